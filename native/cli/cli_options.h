@@ -1,0 +1,2 @@
+// Command-line options of the liftremesh tool.
+#pragma once

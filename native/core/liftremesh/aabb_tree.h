@@ -1,0 +1,33 @@
+// Axis-aligned bounding-box tree over the triangles of a 3D mesh: closest-point queries, used
+// for distances (quality) and for projecting points back onto the input.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <memory>
+
+namespace liftremesh {
+
+struct ClosestPoint {
+    Eigen::Vector3d point;   //!< closest point on the mesh
+    double squared_distance; //!< squared distance from the query
+    int32_t triangle;        //!< index of the triangle it lies on
+};
+
+class AabbTree {
+public:
+    //! Builds the tree over mesh.triangles (the mesh is copied; the tree owns what it needs).
+    explicit AabbTree(const Mesh& mesh);
+    ~AabbTree();
+    AabbTree(AabbTree&&) noexcept;
+    AabbTree& operator=(AabbTree&&) noexcept;
+
+    //! Closest point of the mesh to q. Thread-safe (const).
+    ClosestPoint closest(const Eigen::Vector3d& q) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace liftremesh

@@ -1,0 +1,58 @@
+// Triangle math, in one place: areas and tangent bases in any dimension, closest points,
+// the aspect ratio kappa (Eq. 26), and triangle / disk intersection areas (Section 5.2.1).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace liftremesh {
+
+//! Area of the triangle (a, b, c) in R^d, from the Gram determinant (works for d >= 2).
+template <typename VecA, typename VecB, typename VecC>
+inline double triangle_area(const VecA& a, const VecB& b, const VecC& c) {
+    const auto e1 = (b - a).eval();
+    const auto e2 = (c - a).eval();
+    const double g11 = e1.squaredNorm(), g22 = e2.squaredNorm(), g12 = e1.dot(e2);
+    const double det = g11 * g22 - g12 * g12;
+    return det > 0.0 ? 0.5 * std::sqrt(det) : 0.0;
+}
+
+//! Orthonormal basis (u1, u2) of the plane of triangle (x1, x2, x3) in R^d (Eq. 15).
+//! Returns false (basis undefined) when the triangle is flat.
+template <int D>
+inline bool tangent_basis(const Eigen::Matrix<double, D, 1>& x1, const Eigen::Matrix<double, D, 1>& x2,
+                          const Eigen::Matrix<double, D, 1>& x3, Eigen::Matrix<double, D, 1>& u1,
+                          Eigen::Matrix<double, D, 1>& u2) {
+    u1 = x2 - x1;
+    const double n1 = u1.norm();
+    if (!(n1 > 0.0)) return false;
+    u1 /= n1;
+    u2 = (x3 - x1) - u1 * u1.dot(x3 - x1);
+    const double n2 = u2.norm();
+    if (!(n2 > 1e-14 * n1)) return false;
+    u2 /= n2;
+    return true;
+}
+
+//! Unit normal of a 3D triangle (zero vector if degenerate).
+Eigen::Vector3d triangle_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Aspect ratio kappa = 4 sin a sin b sin c / (sin a + sin b + sin c) (Eq. 26): 1 for an
+//! equilateral triangle, 0 for a degenerate one. Evaluated from the edge lengths l1, l2, l3 and
+//! the area A as 16 A^2 / (l1 l2 l3 (l1 + l2 + l3)), the same quantity.
+double triangle_kappa(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Smallest interior angle of a 3D triangle, in degrees (0 for a degenerate one).
+double triangle_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Closest point to p on triangle (a, b, c) in 3D (Ericson, Real-Time Collision Detection 5.1.5).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Area of the intersection of triangle (a, b, c) with the ball of radius r centred at p,
+//! i.e. of the triangle with the disk cut by the ball in the triangle's plane (Section 5.2.1).
+double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+} // namespace liftremesh

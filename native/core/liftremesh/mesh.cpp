@@ -1,0 +1,117 @@
+#include "liftremesh/mesh.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+
+#include <algorithm>
+#include <string>
+
+namespace liftremesh {
+
+namespace {
+Eigen::Vector3d point(const Points& p, int32_t i) { return p.row(i).transpose(); }
+} // namespace
+
+UnitBallTransform unit_ball_transform(const Mesh& mesh) {
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
+        const auto a = point(mesh.points, mesh.triangles(f, 0));
+        const auto b = point(mesh.points, mesh.triangles(f, 1));
+        const auto c = point(mesh.points, mesh.triangles(f, 2));
+        const double area = triangle_area(a, b, c);
+        weighted += area * (a + b + c) / 3.0;
+        total += area;
+    }
+    if (!(total > 0.0)) throw InvalidInput("the mesh has no triangle of positive area (expected a surface)");
+    UnitBallTransform t;
+    t.center = weighted / total;
+    double radius = 0.0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            radius = std::max(radius, (point(mesh.points, mesh.triangles(f, j)) - t.center).norm());
+    t.scale = radius;
+    return t;
+}
+
+void apply_transform(const UnitBallTransform& t, Points& points) {
+    for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) = t.apply(points.row(i).transpose()).transpose();
+}
+
+void undo_transform(const UnitBallTransform& t, Points& points) {
+    for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) = t.undo(points.row(i).transpose()).transpose();
+}
+
+double surface_area(const Mesh& mesh) {
+    double total = 0.0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        total += triangle_area(point(mesh.points, mesh.triangles(f, 0)), point(mesh.points, mesh.triangles(f, 1)),
+                               point(mesh.points, mesh.triangles(f, 2)));
+    return total;
+}
+
+double bounding_box_diagonal(const Points& points) {
+    if (points.rows() == 0) return 0.0;
+    return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
+    std::vector<std::pair<int32_t, int32_t>> edges;
+    edges.reserve(3 * triangles.rows());
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = triangles(f, j), b = triangles(f, (j + 1) % 3);
+            edges.emplace_back(std::min(a, b), std::max(a, b));
+        }
+    std::sort(edges.begin(), edges.end());
+    std::vector<EdgeCount> out;
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        out.push_back({edges[i].first, edges[i].second, static_cast<int>(j - i)});
+        i = j;
+    }
+    return out;
+}
+
+int euler_characteristic(const Mesh& mesh) {
+    std::vector<char> used(mesh.points.rows(), 0);
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    const long v = std::count(used.begin(), used.end(), 1);
+    const long e = static_cast<long>(edge_counts(mesh.triangles).size());
+    return static_cast<int>(v - e + mesh.triangles.rows());
+}
+
+void check_mesh(const Mesh& mesh, const char* what) {
+    const std::string name(what);
+    if (mesh.points.rows() == 0 || mesh.triangles.rows() == 0)
+        throw InvalidInput(name + " mesh is empty: expected at least one triangle");
+    if (!mesh.points.allFinite())
+        throw InvalidInput(name + " mesh has a non-finite vertex coordinate (NaN or infinity)");
+    const auto n = mesh.points.rows();
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const auto i = mesh.triangles(f, j);
+            if (i < 0 || i >= n)
+                throw InvalidInput(name + " mesh triangle " + std::to_string(f) + " refers to vertex " +
+                                   std::to_string(i) + ", expected an index in [0, " + std::to_string(n) + ")");
+        }
+}
+
+void remove_unreferenced_vertices(Mesh& mesh) {
+    std::vector<int32_t> remap(mesh.points.rows(), -1);
+    int32_t next = 0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            auto& i = mesh.triangles(f, j);
+            if (remap[i] < 0) remap[i] = next++;
+            i = remap[i];
+        }
+    Points kept(next, 3);
+    for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(remap.size()); ++i)
+        if (remap[i] >= 0) kept.row(remap[i]) = mesh.points.row(i);
+    mesh.points = std::move(kept);
+}
+
+} // namespace liftremesh

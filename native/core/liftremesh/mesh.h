@@ -1,0 +1,63 @@
+// Triangle-mesh arrays and the whole-mesh facts every stage needs (area, Euler characteristic,
+// normalisation into the unit ball of Section 5.1).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace liftremesh {
+
+//! #V by 3 vertex positions, row-major so that numpy arrays map without a copy.
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+//! #F by 3 vertex indices (0-based), counter-clockwise seen from outside.
+using Triangles = Eigen::Matrix<int32_t, Eigen::Dynamic, 3, Eigen::RowMajor>;
+//! #V by d lifted vertex positions (d = 3 or 6), row-major.
+using LiftedPoints = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+//! A triangle soup with shared vertices.
+struct Mesh {
+    Points points;       //!< #V by 3
+    Triangles triangles; //!< #F by 3
+};
+
+//! Similarity that maps a mesh into the unit ball (Section 5.1): x' = (x - center) / scale.
+struct UnitBallTransform {
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();
+    double scale = 1.0;
+    Eigen::Vector3d apply(const Eigen::Vector3d& x) const { return (x - center) / scale; }
+    Eigen::Vector3d undo(const Eigen::Vector3d& x) const { return x * scale + center; }
+};
+
+//! Area-weighted centroid as center, largest vertex distance from it as scale.
+//! Throws InvalidInput if the mesh has no triangle of positive area.
+UnitBallTransform unit_ball_transform(const Mesh& mesh);
+
+//! Applies `t` (or its inverse) to every point of `points` in place.
+void apply_transform(const UnitBallTransform& t, Points& points);
+void undo_transform(const UnitBallTransform& t, Points& points);
+
+//! Sum of triangle areas.
+double surface_area(const Mesh& mesh);
+
+//! Axis-aligned bounding-box diagonal length of the referenced vertices.
+double bounding_box_diagonal(const Points& points);
+
+//! Undirected edges (i < j) with the number of triangles using each, sorted by (i, j).
+struct EdgeCount {
+    int32_t a, b;
+    int count;
+};
+std::vector<EdgeCount> edge_counts(const Triangles& triangles);
+
+//! V - E + F counting only vertices referenced by a triangle.
+int euler_characteristic(const Mesh& mesh);
+
+//! Throws InvalidInput naming the problem if indices are out of range, a coordinate is not
+//! finite, or the mesh is empty. `what` names the mesh in the message ("input", "output").
+void check_mesh(const Mesh& mesh, const char* what);
+
+//! Drops vertices no triangle references and renumbers the triangles.
+void remove_unreferenced_vertices(Mesh& mesh);
+
+} // namespace liftremesh

@@ -1,0 +1,71 @@
+// RemeshParams: every knob of the method, with its default, range and the paper's symbol.
+// This struct and `parameter_table()` are the single source of truth for the CLI's options and
+// --help, and for the Python module and FreeCAD workbench built on top of the core.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace liftremesh {
+
+//! Isotropic: small nearly lifted surface (nu = 0.01) with density rho^delta (delta = 0.4):
+//! well-shaped triangles, smaller where the surface bends (what FEM wants).
+//! Anisotropic: stronger lifting (nu = 0.05), no density (delta = 0): triangles stretched along
+//! the directions of low curvature (Section 2.5).
+enum class Mode { Isotropic, Anisotropic };
+
+const char* to_string(Mode mode);
+//! Parses "isotropic" / "anisotropic"; throws InvalidInput naming the value otherwise.
+Mode parse_mode(const std::string& text);
+
+struct RemeshParams {
+    //! Target number of output vertices (= number of sites). Range >= 4. Default 6000.
+    //! Ignored when target_edge_length > 0.
+    int target_vertices = 6000;
+    //! Target edge length h in input units; > 0 replaces target_vertices by
+    //! round(area / (sqrt(3)/2 h^2)), the vertex count of an equilateral mesh of that edge length.
+    //! Default 0 (use target_vertices).
+    double target_edge_length = 0.0;
+    //! Isotropic or anisotropic defaults for nu and delta (Section 6.1). Default isotropic.
+    Mode mode = Mode::Isotropic;
+    //! sigma: feature sensitivity, weight of the normal component of the distance (Eq. 9, 14).
+    //! Range >= 1 (1 = no feature sensitivity). Default 5 (Section 6.1).
+    double sigma = 5.0;
+    //! delta: exponent of the local density rho_p^delta (Eq. 21, 25). Range [0, 2].
+    //! Default 0.4 isotropic, 0 anisotropic (Section 6.1).
+    double delta = 0.4;
+    //! nu: scale of the normal in the 6D lifting x + nu n (Eq. 12), in unit-ball units.
+    //! Range [0, 1] (0 = no lifting, remesh in 3D). Default 0.01 isotropic, 0.05 anisotropic.
+    double nu = 0.01;
+    //! eta: radius of the geometric neighbourhood over which vertex normals are averaged
+    //! (Section 5.2.1), in unit-ball units. Range (0, 0.5]. Default 0.01.
+    double eta = 0.01;
+    //! Number of L-BFGS iterations in all. The first 90% use sigma = 1, the rest (at least 10)
+    //! use sigma (Section 6.2.2). Range >= 1. Default 100.
+    int iterations = 100;
+    //! Seed of the random initial sampling: a given seed gives the same result. Default 1.
+    std::uint64_t seed = 1;
+    //! Worker threads for the restricted Voronoi diagram and the objective; 0 = all cores.
+    int threads = 0;
+    //! Fill the holes of the restricted Delaunay triangulation that the input does not have
+    //! (Section 5.2.2). Default true.
+    bool fill_holes = true;
+
+    //! The defaults of Section 6.1 for a mode (nu and delta depend on it).
+    static RemeshParams for_mode(Mode mode);
+
+    //! Throws InvalidInput naming the field, its value and the accepted range.
+    void validate() const;
+};
+
+//! One row per user-facing parameter, for --help texts and bindings.
+struct ParameterInfo {
+    std::string name;       //!< snake_case field name (CLI: --name-with-dashes)
+    std::string symbol;     //!< the paper's symbol, or "" if none
+    std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")
+    std::string help;       //!< one-line meaning
+};
+const std::vector<ParameterInfo>& parameter_table();
+
+} // namespace liftremesh

@@ -1,0 +1,42 @@
+// Quality metrics of a triangle mesh: aspect ratio kappa (Eq. 26), angles, topology counts,
+// sharp-edge length, and the two-sided Hausdorff distance between two meshes.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <array>
+#include <cstdint>
+
+namespace liftremesh {
+
+struct MeshQuality {
+    long vertices = 0;                     //!< referenced vertices
+    long triangles = 0;
+    double kappa_min = 0.0;                //!< Eq. 26 over all triangles
+    double kappa_mean = 0.0;
+    std::array<long, 10> kappa_histogram{}; //!< counts in [0, 0.1), [0.1, 0.2), ..., [0.9, 1.0]
+    double min_angle_deg = 0.0;            //!< smallest interior angle of any triangle
+    long boundary_edges = 0;               //!< edges used by exactly one triangle
+    long nonmanifold_edges = 0;            //!< edges used by three or more triangles
+    long nonmanifold_vertices = 0;         //!< vertices whose triangle fan is not one disk/half-disk
+    bool oriented = true;                  //!< every manifold edge is used once in each direction
+    int euler_characteristic = 0;          //!< V - E + F
+    double sharp_edge_length = 0.0;        //!< total length of edges with dihedral angle > sharp_angle
+};
+
+//! Measures `mesh`. `sharp_angle_deg` is the angle between the two face normals above which an
+//! edge counts as sharp (60 degrees in the project's acceptance criteria).
+MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg = 60.0);
+
+struct DistanceStats {
+    double hausdorff = 0.0; //!< max of the two one-sided maxima (absolute units)
+    double a_to_b = 0.0;    //!< max over samples of a of the distance to b
+    double b_to_a = 0.0;    //!< max over samples of b of the distance to a
+    double mean = 0.0;      //!< mean of all sampled distances, both directions
+};
+
+//! Two-sided Hausdorff distance, exact point-to-triangle distances from `samples` points on
+//! each mesh (all its vertices first, then area-uniform random points, fixed `seed`).
+DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples = 100000, std::uint64_t seed = 7);
+
+} // namespace liftremesh

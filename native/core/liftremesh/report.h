@@ -1,0 +1,34 @@
+// The report of a remesh run: quality of input and output, distance, timings; as JSON.
+#pragma once
+
+#include "liftremesh/quality.h"
+
+#include <string>
+#include <vector>
+
+namespace liftremesh {
+
+struct StageTime {
+    std::string stage; //!< "read", "normals", "optimize", "rdt", ...
+    double seconds = 0.0;
+};
+
+struct RemeshReport {
+    MeshQuality input;
+    MeshQuality output;
+    double bbox_diagonal = 0.0;          //!< of the input, input units
+    double hausdorff_relative = 0.0;     //!< two-sided Hausdorff / bbox_diagonal
+    double mean_distance_relative = 0.0; //!< mean sampled distance / bbox_diagonal
+    long sites = 0;                      //!< number of sites optimised
+    int iterations = 0;                  //!< L-BFGS iterations done
+    double energy_initial = 0.0;         //!< objective at the random start (sigma = 1)
+    double energy_final = 0.0;           //!< objective at the end (final sigma)
+    long holes_filled = 0;
+    long triangles_removed = 0;          //!< by the manifold repair
+    std::vector<StageTime> timings;
+};
+
+//! The report as a JSON object (keys documented in the README).
+std::string to_json(const RemeshReport& report);
+
+} // namespace liftremesh

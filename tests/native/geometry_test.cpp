@@ -1,0 +1,51 @@
+#include "liftremesh/geometry.h"
+#include "liftremesh/mesh.h"
+#include "helpers.h"
+
+#include <gtest/gtest.h>
+
+using namespace liftremesh;
+
+TEST(Geometry, KappaIsOneForEquilateralAndZeroForDegenerate) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
+    EXPECT_NEAR(triangle_kappa(a, b, c), 1.0, 1e-12);
+    EXPECT_NEAR(triangle_kappa(a, b, Eigen::Vector3d(2, 0, 0)), 0.0, 1e-12);
+    // Right isosceles: angles 90, 45, 45 -> 4 sin90 sin45 sin45 / (1 + 2 sin45)
+    const double s = std::sqrt(0.5), expected = 4 * s * s / (1 + 2 * s);
+    EXPECT_NEAR(triangle_kappa(a, b, Eigen::Vector3d(0, 1, 0)), expected, 1e-12);
+}
+
+TEST(Geometry, TriangleAreaIsDimensionFree) {
+    Eigen::Matrix<double, 6, 1> a = Eigen::Matrix<double, 6, 1>::Zero(), b = a, c = a;
+    b[0] = 2;
+    c[4] = 3; // a right triangle in the (x0, x4) plane of R^6
+    EXPECT_NEAR(triangle_area(a, b, c), 3.0, 1e-14);
+}
+
+TEST(Geometry, BallIntersectionAreaMatchesLimits) {
+    const Eigen::Vector3d a(-10, -10, 0), b(10, -10, 0), c(0, 10, 0);
+    // Small ball inside the triangle, offset from the plane: a disk of radius sqrt(r^2 - d^2).
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 0.6), 1.0, a, b, c), M_PI * 0.64, 1e-12);
+    // Huge ball: the whole triangle.
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 0), 100.0, a, b, c), 200.0, 1e-9);
+    // Ball centred on a straight edge: half a disk.
+    const Eigen::Vector3d p(0, -10, 0);
+    EXPECT_NEAR(triangle_ball_intersection_area(p, 1.0, a, b, c), M_PI / 2, 1e-12);
+    // Far away: nothing.
+    EXPECT_EQ(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 5), 1.0, a, b, c), 0.0);
+}
+
+TEST(Geometry, ClosestPointOnTriangleRegions) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    EXPECT_TRUE(closest_point_on_triangle({0.2, 0.2, 5}, a, b, c).isApprox(Eigen::Vector3d(0.2, 0.2, 0)));
+    EXPECT_TRUE(closest_point_on_triangle({-1, -1, 0}, a, b, c).isApprox(a));
+    EXPECT_TRUE(closest_point_on_triangle({0.5, -3, 1}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0, 0)));
+    EXPECT_TRUE(closest_point_on_triangle({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));
+}
+
+TEST(Mesh, EulerCharacteristicOfBuiltShapes) {
+    EXPECT_EQ(euler_characteristic(test::make_icosphere(2)), 2);
+    EXPECT_EQ(euler_characteristic(test::make_torus(1.0, 0.3, 24, 12)), 0);
+    EXPECT_EQ(euler_characteristic(test::make_cube(1.0, 3)), 2);
+    EXPECT_NEAR(surface_area(test::make_cube(1.0, 3)), 24.0, 1e-12);
+}

@@ -1,0 +1,121 @@
+// Small meshes built in code for the tests, and access to ../shared/meshes.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <Eigen/Geometry>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace liftremesh::test {
+
+inline Mesh make_mesh(const std::vector<Eigen::Vector3d>& pts, const std::vector<std::array<int32_t, 3>>& tris) {
+    Mesh m;
+    m.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+    for (size_t i = 0; i < pts.size(); ++i) m.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+    m.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
+    for (size_t i = 0; i < tris.size(); ++i)
+        for (int j = 0; j < 3; ++j) m.triangles(static_cast<Eigen::Index>(i), j) = tris[i][j];
+    return m;
+}
+
+//! Unit icosphere (radius r), outward oriented: 12 vertices at level 0, x4 faces per level.
+inline Mesh make_icosphere(int levels, double r = 1.0) {
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<Eigen::Vector3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<int32_t, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                             {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                             {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                             {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    for (auto& x : p) x.normalize();
+    for (int l = 0; l < levels; ++l) {
+        std::map<std::pair<int32_t, int32_t>, int32_t> mid;
+        auto midpoint = [&](int32_t a, int32_t b) {
+            auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            p.push_back((p[a] + p[b]).normalized());
+            return mid[key] = static_cast<int32_t>(p.size() - 1);
+        };
+        std::vector<std::array<int32_t, 3>> g;
+        for (auto& tri : f) {
+            const int32_t a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), c = midpoint(tri[2], tri[0]);
+            g.push_back({tri[0], a, c});
+            g.push_back({tri[1], b, a});
+            g.push_back({tri[2], c, b});
+            g.push_back({a, b, c});
+        }
+        f = std::move(g);
+    }
+    for (auto& x : p) x *= r;
+    return make_mesh(p, f);
+}
+
+//! Torus with major radius R, minor radius r, n x m quads split in two, outward oriented.
+inline Mesh make_torus(double R, double r, int n, int m) {
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+            p.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+        }
+    auto id = [&](int i, int j) { return static_cast<int32_t>(((i + n) % n) * m + (j + m) % m); };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return make_mesh(p, f);
+}
+
+//! Axis-aligned cube [-s, s]^3, each face an n x n grid split into triangles, outward oriented.
+inline Mesh make_cube(double s, int n) {
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    std::map<std::array<long, 3>, int32_t> index;
+    auto vertex = [&](const Eigen::Vector3d& x) {
+        std::array<long, 3> key = {std::lround(x.x() * 1e6), std::lround(x.y() * 1e6), std::lround(x.z() * 1e6)};
+        auto it = index.find(key);
+        if (it != index.end()) return it->second;
+        p.push_back(x);
+        return index[key] = static_cast<int32_t>(p.size() - 1);
+    };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = -1; side <= 1; side += 2) {
+            Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+            normal[axis] = side;
+            Eigen::Vector3d u = Eigen::Vector3d::Zero(), v;
+            u[(axis + 1) % 3] = 1;
+            v = normal.cross(u);
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    auto at = [&](int a, int b) {
+                        return vertex(s * (normal + u * (-1 + 2.0 * a / n) + v * (-1 + 2.0 * b / n)));
+                    };
+                    const int32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+                    f.push_back({a, b, c});
+                    f.push_back({a, c, d});
+                }
+        }
+    return make_mesh(p, f);
+}
+
+//! Path of a mesh in ../shared/meshes, or "" (and the test is skipped) where it does not exist.
+inline std::string shared_mesh(const std::string& name) {
+    const std::filesystem::path path = std::filesystem::path(LIFTREMESH_SHARED_MESHES) / name;
+    return std::filesystem::exists(path) ? path.string() : std::string();
+}
+
+#define LIFTREMESH_REQUIRE_SHARED(var, name)                                                 \
+    const std::string var = ::liftremesh::test::shared_mesh(name);                           \
+    if (var.empty()) GTEST_SKIP() << "../shared/meshes/" << name << " not found beside the repository"
+
+} // namespace liftremesh::test
