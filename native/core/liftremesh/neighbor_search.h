@@ -1,0 +1,38 @@
+// Nearest-neighbour search in R^d (d = 3 or 6) with a kd-tree (nanoflann). The only file pair
+// that includes nanoflann.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace liftremesh {
+
+class KdTree {
+public:
+    //! Builds a tree over the rows of `points` (#P by d, row-major, d = 3 or 6), copied.
+    explicit KdTree(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& points);
+    ~KdTree();
+    KdTree(KdTree&&) noexcept;
+    KdTree& operator=(KdTree&&) noexcept;
+
+    int dimension() const;
+    long size() const;
+
+    //! The k nearest points to `query` (d values), closest first. Returns how many were found
+    //! (less than k only if the tree has fewer points). Thread-safe.
+    int knn(const double* query, int k, int32_t* indices, double* squared_distances) const;
+
+    //! Index of the nearest point to `query`. Thread-safe.
+    int32_t nearest(const double* query) const;
+
+    //! All points within distance `radius` of `query` (unordered), appended to `out`. Thread-safe.
+    void within(const double* query, double radius, std::vector<int32_t>& out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace liftremesh

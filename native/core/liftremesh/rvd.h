@@ -1,0 +1,63 @@
+// The restricted Voronoi diagram (RVD) of sites on a triangulated surface in R^d, d = 3 or 6
+// (Section 2.2): for every site k and triangle T_p, the convex polygon Omega_{k|T_p} of the
+// points of T_p nearer to site k than to any other site (Eq. 3).
+//
+// Computed as in Levy and Bonneel (Section 2.2.2): no Voronoi diagram is built; each triangle is
+// clipped by the bisectors of a site and its nearest neighbours (kd-tree), stopping when the
+// next neighbour is farther than twice the polygon's radius around the site (the security
+// radius: no farther site can cut it). Each triangle is processed on its own, starting from the
+// site nearest to its centroid and propagating to the sites across the bisector edges found;
+// the cells' dual graph within a convex triangle is connected, so none is missed, and no input
+// connectivity is used, so gaps and T-junctions need no special case. Triangles are spread
+// over threads with OpenMP.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <functional>
+#include <vector>
+
+namespace liftremesh {
+
+//! The (lifted) surface the diagram is restricted to, with what every evaluation needs.
+struct LiftedSurface {
+    LiftedPoints points;     //!< #V by d
+    Triangles triangles;     //!< #F by 3
+    Eigen::VectorXd weights; //!< #F objective weights rho_p^delta (Eq. 25)
+    LiftedPoints u1, u2;     //!< #F by d orthonormal tangent basis of each triangle (Eq. 15)
+    std::vector<char> valid; //!< #F false for flat triangles (no basis): ignored (Section 3.1)
+    int dimension() const { return static_cast<int>(points.cols()); }
+};
+
+//! Builds the surface and its tangent bases. `weights` empty means all ones.
+LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eigen::VectorXd weights = {});
+
+//! Total area of the valid triangles of the (lifted) surface.
+double lifted_area(const LiftedSurface& surface);
+
+//! One polygon Omega_{k|T_p} of the diagram, valid only during the visitor call.
+struct RvdPolygon {
+    int32_t site = -1;               //!< k
+    int32_t triangle = -1;           //!< p
+    int size = 0;                    //!< number of vertices (>= 3), in the triangle's orientation
+    const double* vertices = nullptr; //!< size by d, row-major
+    //! edges[i] is the line carrying the edge from vertex i to vertex i+1: a site l >= 0 for the
+    //! bisector of k and l, or -1 - j for edge j of the triangle (from its vertex j to j+1).
+    const int32_t* edges = nullptr;
+};
+
+//! Called for every non-empty polygon; `thread` in [0, resolve_threads(threads)).
+using PolygonVisitor = std::function<void(int thread, const RvdPolygon& polygon)>;
+
+//! The number of threads actually used for a requested count (0 = all cores).
+int resolve_threads(int threads);
+
+//! Computes the diagram of `sites` (#S by d, d = surface.dimension()) and visits its polygons.
+//! Visits happen concurrently from several threads (one triangle's polygons on one thread, in a
+//! fixed order for a given thread count): the visitor must write only per-thread state.
+void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit);
+
+//! #S areas |Omega_{k|S}| of the restricted cells; they add up to lifted_area(surface).
+Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0);
+
+} // namespace liftremesh
