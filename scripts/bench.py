@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""Benchmark: runs build/bin/liftremesh on the public meshes in ../shared/meshes and prints a
+markdown table (stage times from the report, wall time and peak memory from /usr/bin/time -v,
+output quality). Progress goes to stderr, the table to stdout.
+
+    /usr/bin/python3 scripts/bench.py [--meshes DIR] [--cli PATH] [--out DIR] [--only NAME ...]
+
+Skips (exit 0) when the mesh folder is absent; exits 1 when a run fails.
+"""
+
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# (file, target vertices); every run does ITERATIONS iterations.
+CASES = [
+    ("gmsh_t13_data.stl", 6000),
+    ("pmp_bunny.off", 50000),
+    ("netgen_hinge.stl", 6000),
+    ("gmsh_lever.stl", 6000),
+    ("pmp_fandisk.off", 6000),
+]
+ITERATIONS = 100
+
+
+def stage_times(timings):
+    if isinstance(timings, dict):
+        return list(timings.items())
+    return [(t["stage"], t["seconds"]) for t in timings or []]
+
+
+def peak_rss_mib(time_output):
+    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", time_output)
+    return int(m.group(1)) / 1024.0 if m else None
+
+
+def run_case(cli, mesh_dir, out_dir, name, vertices):
+    stem = os.path.splitext(name)[0]
+    out_mesh = os.path.join(out_dir, stem + "_remeshed" + os.path.splitext(name)[1])
+    report_path = os.path.join(out_dir, stem + "_report.json")
+    time_path = os.path.join(out_dir, stem + "_time.txt")
+    if os.path.exists(report_path):
+        os.remove(report_path)
+    cmd = ["/usr/bin/time", "-v", "-o", time_path, cli, os.path.join(mesh_dir, name), out_mesh,
+           "--vertices", str(vertices), "--iterations", str(ITERATIONS),
+           "--report", report_path, "--quiet"]
+    sys.stderr.write("bench: %s\n" % " ".join(cmd[4:]))
+    start = time.monotonic()
+    proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wall = time.monotonic() - start
+    row = {"name": name, "target": vertices, "wall": wall, "rc": proc.returncode,
+           "error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else ""}
+    if os.path.exists(time_path):
+        with open(time_path) as f:
+            row["rss"] = peak_rss_mib(f.read())
+    if proc.returncode == 0:
+        with open(report_path) as f:
+            row["report"] = json.load(f)
+    return row
+
+
+def fmt(value, spec, scale=1.0):
+    """A number formatted; "-" for a missing value (the report writes non-finite ones as null)."""
+    return "-" if value is None else format(scale * value, spec)
+
+
+def table(rows):
+    stages = []
+    for row in rows:
+        for stage, _ in stage_times(row.get("report", {}).get("timings")):
+            if stage not in stages:
+                stages.append(stage)
+    head = (["input", "target V", "sites", "iterations"] + ["%s s" % s for s in stages]
+            + ["wall s", "peak MiB", "kappa min", "kappa mean", "Hausdorff %", "chi in/out"])
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for row in rows:
+        report = row.get("report")
+        if report is None:
+            cells = ([row["name"], str(row["target"]), "failed (exit %d)" % row["rc"], row["error"]]
+                     + ["-"] * len(stages) + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f")]
+                     + ["-"] * 4)
+        else:
+            times = dict(stage_times(report.get("timings")))
+            out = report["output"]
+            cells = ([row["name"], str(row["target"]), str(report["sites"]),
+                      str(report["iterations"])]
+                     + [fmt(times.get(s), ".2f") for s in stages]
+                     + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f"),
+                        fmt(out["kappa_min"], ".3f"), fmt(out["kappa_mean"], ".3f"),
+                        fmt(report["hausdorff_relative"], ".3f", 100.0),
+                        "%d / %d" % (report["input"]["euler_characteristic"],
+                                     out["euler_characteristic"])])
+        lines.append("| " + " | ".join(c.replace("|", "/") for c in cells) + " |")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--meshes",
+                        default=os.path.normpath(os.path.join(REPO, "..", "shared", "meshes")))
+    parser.add_argument("--cli", default=os.path.join(REPO, "build", "bin", "liftremesh"))
+    parser.add_argument("--out", default=os.path.join(REPO, "out", "bench"))
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="run only these mesh files")
+    args = parser.parse_args()
+
+    if not os.path.isdir(args.meshes):
+        print("bench: skipped, no mesh folder at %s" % os.path.normpath(args.meshes))
+        return 0
+    if not os.access(args.cli, os.X_OK):
+        sys.stderr.write("bench: %s is not built (run make build)\n" % args.cli)
+        return 1
+    os.makedirs(args.out, exist_ok=True)
+
+    rows = []
+    for name, vertices in CASES:
+        if args.only and name not in args.only:
+            continue
+        if not os.path.exists(os.path.join(args.meshes, name)):
+            sys.stderr.write("bench: %s missing, skipped\n" % name)
+            continue
+        rows.append(run_case(args.cli, args.meshes, args.out, name, vertices))
+
+    print("LiftRemesh benchmark: %d iterations, %d cores, %s" % (ITERATIONS, os.cpu_count(),
+                                                                time.strftime("%Y-%m-%d")))
+    print()
+    print(table(rows))
+    return 1 if any("report" not in r for r in rows) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,158 @@
+#!/usr/bin/python3
+"""Builds the demo CAD part with FreeCAD's Part module and writes it as an STL the way a FreeCAD
+user's export would tessellate it (MeshPart.meshFromShape: coarse, with slivers).
+
+The part: a mounting bracket -- a plate with rounded corners, a cylindrical boss with a fillet at
+its foot and a chamfer on top, a bore through boss and plate, and two mounting holes.
+Genus 3 (three through-holes), so a closed tessellation has Euler characteristic 2 - 2*3 = -4.
+
+Run with Debian's Python, which finds FreeCAD through its library directory:
+    /usr/bin/python3 scripts/make_demo_part.py [OUT.stl]        (default out/demo_part.stl)
+It also runs as `freecadcmd scripts/make_demo_part.py`. freecadcmd exits 0 even when a script
+raises, so every failure ends in an explicit os._exit(1).
+"""
+
+import math
+import os
+import sys
+import traceback
+
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"  # Debian's freecad-python3 package
+
+THROUGH_HOLES = 3
+LINEAR_DEFLECTION = 0.1  # mm: FreeCAD's standard mesher surface deviation
+ANGULAR_DEFLECTION = math.radians(30.0)  # FreeCAD's standard mesher angular deviation
+
+
+def fail(message):
+    sys.stdout.flush()
+    sys.stderr.write("make_demo_part: " + message + "\n")
+    sys.stderr.flush()
+    os._exit(1)
+
+
+def output_path():
+    # Under freecadcmd, sys.argv holds freecadcmd's own arguments: take the last .stl, if any.
+    args = [a for a in sys.argv[1:] if a.lower().endswith(".stl")]
+    return args[-1] if args else os.path.join("out", "demo_part.stl")
+
+
+def circle_edges(shape, radius, z):
+    """Edges of `shape` that are circles of `radius` centred at height `z`."""
+    found = []
+    for edge in shape.Edges:
+        curve = edge.Curve
+        if curve.TypeId == "Part::GeomCircle" and abs(curve.Radius - radius) < 1e-6 \
+                and abs(curve.Center.z - z) < 1e-6:
+            found.append(edge)
+    return found
+
+
+def vertical_corner_edges(shape, length, width):
+    """The four vertical line edges at the corners of a length x width plate."""
+    corners = {(0.0, 0.0), (length, 0.0), (0.0, width), (length, width)}
+    found = []
+    for edge in shape.Edges:
+        if edge.Curve.TypeId != "Part::GeomLine":
+            continue
+        a, b = edge.Vertexes[0].Point, edge.Vertexes[1].Point
+        if abs(a.x - b.x) < 1e-9 and abs(a.y - b.y) < 1e-9 and \
+                any(abs(a.x - x) < 1e-9 and abs(a.y - y) < 1e-9 for x, y in corners):
+            found.append(edge)
+    return found
+
+
+def make_bracket(Part, Vector):
+    length, width, thickness = 80.0, 50.0, 10.0
+    boss_centre, boss_radius, boss_height = Vector(55.0, 25.0, thickness), 13.0, 12.0
+    top = thickness + boss_height
+
+    plate = Part.makeBox(length, width, thickness)
+    plate = plate.makeFillet(8.0, vertical_corner_edges(plate, length, width))
+
+    boss = Part.makeCylinder(boss_radius, boss_height, boss_centre)
+    body = plate.fuse(boss).removeSplitter()
+    body = body.makeFillet(2.0, circle_edges(body, boss_radius, thickness))
+    body = body.makeChamfer(1.5, circle_edges(body, boss_radius, top))
+
+    cutters = [Part.makeCylinder(6.5, top + 2.0, Vector(boss_centre.x, boss_centre.y, -1.0))]
+    cutters += [Part.makeCylinder(4.0, thickness + 2.0, Vector(14.0, y, -1.0)) for y in (12.0, 38.0)]
+    for cutter in cutters:
+        body = body.cut(cutter)
+    return body.removeSplitter()
+
+
+def check_solid(shape):
+    if not shape.isValid():
+        fail("the part is not a valid shape")
+    if len(shape.Solids) != 1:
+        fail("expected one solid, got %d" % len(shape.Solids))
+    solid = shape.Solids[0]
+    if len(solid.Shells) != 1 or not solid.Shells[0].isClosed():
+        fail("the solid's shell is not closed")
+    if solid.Volume <= 0.0:
+        fail("the solid has volume %g" % solid.Volume)
+    return solid
+
+
+def check_mesh(mesh, what):
+    """Closed, manifold, consistently oriented; returns the Euler characteristic V - E + F."""
+    if not mesh.isSolid():
+        fail(what + " is not closed")
+    if mesh.hasNonManifolds():
+        fail(what + " has non-manifold edges")
+    if mesh.hasNonUniformOrientedFacets():
+        fail(what + " has inconsistently oriented triangles")
+    if mesh.countComponents() != 1:
+        fail("%s has %d components" % (what, mesh.countComponents()))
+    return mesh.CountPoints - mesh.CountEdges + mesh.CountFacets
+
+
+def main():
+    if FREECAD_LIB not in sys.path:
+        sys.path.append(FREECAD_LIB)
+    import FreeCAD  # noqa: F401  (loads the application; Part needs it)
+    import Mesh
+    import MeshPart
+    import Part
+
+    solid = check_solid(make_bracket(Part, FreeCAD.Vector))
+    mesh = MeshPart.meshFromShape(Shape=solid, LinearDeflection=LINEAR_DEFLECTION,
+                                  AngularDeflection=ANGULAR_DEFLECTION)
+    chi = check_mesh(mesh, "the tessellation")
+    expected_chi = 2 - 2 * THROUGH_HOLES
+    if chi != expected_chi:
+        fail("Euler characteristic %d, expected %d (genus %d)" % (chi, expected_chi, THROUGH_HOLES))
+
+    path = output_path()
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    mesh.write(path)
+    # Read it back: an STL stores no shared vertices, so this checks the welded file itself.
+    written = Mesh.Mesh(path)
+    if written.CountFacets != mesh.CountFacets:
+        fail("%s has %d triangles, expected %d" % (path, written.CountFacets, mesh.CountFacets))
+    if check_mesh(written, path) != chi:
+        fail(path + " has a different Euler characteristic after welding")
+
+    bb = solid.BoundBox
+    print("demo part: bracket %.0f x %.0f x %.0f mm, valid closed solid, volume %.1f mm^3, "
+          "%d faces, genus %d" % (bb.XLength, bb.YLength, bb.ZLength, solid.Volume,
+                                  len(solid.Faces), THROUGH_HOLES))
+    print("tessellation (LinearDeflection %.2f mm, AngularDeflection %.0f deg): %d vertices, "
+          "%d triangles, closed, Euler characteristic %d -> %s"
+          % (LINEAR_DEFLECTION, math.degrees(ANGULAR_DEFLECTION), mesh.CountPoints,
+             mesh.CountFacets, chi, path))
+
+
+if __name__ in ("__main__", "make_demo_part"):
+    try:
+        main()
+    except SystemExit:
+        raise
+    except BaseException:  # freecadcmd would swallow it and exit 0
+        traceback.print_exc()
+        fail("failed")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    if "freecadcmd" in os.path.basename(sys.executable).lower():
+        os._exit(0)

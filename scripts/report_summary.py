@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""Prints a short human-readable summary of a liftremesh --report JSON file.
+
+    /usr/bin/python3 scripts/report_summary.py REPORT.json [--check]
+
+With --check, exits 1 when the output is not a closed 2-manifold with the input's Euler
+characteristic. Exits 2 when the report cannot be read or lacks a key.
+"""
+
+import json
+import sys
+
+
+def stage_times(timings):
+    """The report's timings as (stage, seconds) pairs, from an object or a list of pairs."""
+    if isinstance(timings, dict):
+        return list(timings.items())
+    return [(t["stage"], t["seconds"]) for t in timings or []]
+
+
+def num(value, spec, scale=1.0):
+    """A report number formatted; the report writes a non-finite value as null."""
+    return "n/a" if value is None else format(scale * value, spec)
+
+
+def quality_line(label, q):
+    return ("%s: %s vertices, %s triangles, kappa min %s mean %s, min angle %s deg"
+            % (label, q["vertices"], q["triangles"], num(q["kappa_min"], ".4f"),
+               num(q["kappa_mean"], ".3f"), num(q["min_angle_deg"], ".2f")))
+
+
+def summarise(report):
+    inp, out = report["input"], report["output"]
+    lines = [quality_line("input ", inp), quality_line("output", out)]
+    lines.append("topology: Euler characteristic %d -> %d, %d boundary edges, %d non-manifold edges"
+                 % (inp["euler_characteristic"], out["euler_characteristic"],
+                    out["boundary_edges"], out["nonmanifold_edges"]))
+    lines.append("fidelity: Hausdorff %s%% of the bounding-box diagonal; sharp-edge length "
+                 "%s -> %s" % (num(report["hausdorff_relative"], ".3f", 100.0),
+                               num(inp["sharp_edge_length"], ".4g"),
+                               num(out["sharp_edge_length"], ".4g")))
+    times = stage_times(report.get("timings"))
+    if times:
+        lines.append("time  : %.2f s (%s); %d sites, %d iterations"
+                     % (sum(s or 0.0 for _, s in times),
+                        ", ".join("%s %s" % (n, num(s, ".2f")) for n, s in times),
+                        report["sites"], report["iterations"]))
+    return lines
+
+
+def topology_problems(report):
+    inp, out = report["input"], report["output"]
+    problems = []
+    if inp.get("boundary_edges", 0) == 0 and out["boundary_edges"] != 0:
+        problems.append("%d boundary edges on a closed input" % out["boundary_edges"])
+    if out["nonmanifold_edges"] != 0:
+        problems.append("%d non-manifold edges" % out["nonmanifold_edges"])
+    if out.get("oriented") is False:
+        problems.append("inconsistently oriented triangles")
+    if out["euler_characteristic"] != inp["euler_characteristic"]:
+        problems.append("Euler characteristic %d, input %d"
+                        % (out["euler_characteristic"], inp["euler_characteristic"]))
+    return problems
+
+
+def main(argv):
+    args = [a for a in argv if a != "--check"]
+    if len(args) != 1:
+        sys.stderr.write("usage: report_summary.py REPORT.json [--check]\n")
+        return 2
+    try:
+        with open(args[0]) as f:
+            report = json.load(f)
+        lines = summarise(report)
+        problems = topology_problems(report)
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        sys.stderr.write("report_summary: cannot read %s: %s: %s\n" % (args[0], type(e).__name__, e))
+        return 2
+    print("\n".join(lines))
+    if problems:
+        print("check : NOT the input's topology: " + "; ".join(problems))
+        return 1 if "--check" in argv else 0
+    print("check : closed 2-manifold with the input's topology")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
