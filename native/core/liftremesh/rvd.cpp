@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <memory>
 
 namespace liftremesh {
 
@@ -48,53 +49,57 @@ int resolve_threads(int threads) { return threads > 0 ? threads : omp_get_max_th
 
 namespace {
 
-// A convex polygon in R^D with the line id of each edge (see RvdPolygon::edges).
+// A convex polygon in R^D with the line id of each edge (see RvdPolygon::edges), in fixed
+// storage: clipping a triangle by n half-spaces gives at most 3 + n vertices, and a cell is
+// clipped by a few tens of bisectors at most; a polygon that would grow past the capacity is
+// left as it is by the clip (the caller then stops clipping it, see `full()`).
 template <int D>
 struct Polygon {
     using Vec = Eigen::Matrix<double, D, 1>;
-    std::vector<Vec> v;
-    std::vector<int32_t> e;
-    void clear() { v.clear(); e.clear(); }
-    void push(const Vec& x, int32_t id) { v.push_back(x); e.push_back(id); }
+    static constexpr int kCapacity = 96;
+    Vec v[kCapacity];
+    int32_t e[kCapacity];
+    int n = 0;
+    void push(const Vec& x, int32_t id) {
+        v[n] = x;
+        e[n++] = id;
+    }
+    bool full() const { return n + 1 >= kCapacity; }
 };
 
-// Keeps the part of `in` nearer to vk than to vl (the half-space (x - (vk+vl)/2).(vl - vk) <= 0),
-// Sutherland-Hodgman; the new edge carries the id l.
+// Clips `in` to the half-space of points nearer to vk than to vl,
+// (x - (vk + vl)/2) . (vl - vk) <= 0 (Sutherland-Hodgman), the new edge carrying the id l.
+// Returns false, leaving `out` untouched, when the bisector misses the polygon (nothing cut).
 template <int D>
-void clip_by_bisector(const Polygon<D>& in, const typename Polygon<D>::Vec& vk, const typename Polygon<D>::Vec& vl,
-                      int32_t l, Polygon<D>& out, std::vector<double>& side) {
+bool clip_by_bisector(const Polygon<D>& in, const typename Polygon<D>::Vec& vk, const typename Polygon<D>::Vec& vl,
+                      int32_t l, Polygon<D>& out) {
     using Vec = typename Polygon<D>::Vec;
     const Vec dir = vl - vk;
-    const Vec mid = 0.5 * (vk + vl);
-    const size_t n = in.v.size();
-    side.resize(n);
-    bool any_out = false, any_in = false;
-    for (size_t i = 0; i < n; ++i) {
-        side[i] = (in.v[i] - mid).dot(dir);
-        (side[i] > 0.0 ? any_out : any_in) = true;
+    const double offset = 0.5 * (vk + vl).dot(dir);
+    double side[Polygon<D>::kCapacity];
+    bool any_out = false;
+    for (int i = 0; i < in.n; ++i) {
+        side[i] = in.v[i].dot(dir) - offset;
+        any_out |= side[i] > 0.0;
     }
-    out.clear();
-    if (!any_out) {
-        out = in;
-        return;
-    }
-    if (!any_in) return;
-    for (size_t i = 0; i < n; ++i) {
-        const size_t j = (i + 1) % n;
+    if (!any_out) return false;
+    out.n = 0;
+    for (int i = 0; i < in.n; ++i) {
+        const int j = i + 1 == in.n ? 0 : i + 1;
         const bool in_i = side[i] <= 0.0, in_j = side[j] <= 0.0;
         if (in_i) out.push(in.v[i], in.e[i]);
         if (in_i != in_j) {
             const double t = side[i] / (side[i] - side[j]);
-            const Vec x = in.v[i] + t * (in.v[j] - in.v[i]);
-            out.push(x, in_i ? l : in.e[i]); // leaving: bisector edge follows; entering: the old edge
+            out.push(in.v[i] + t * (in.v[j] - in.v[i]), in_i ? l : in.e[i]); // leaving: the bisector follows
         }
     }
+    return true;
 }
 
 template <int D>
 double max_squared_distance(const Polygon<D>& p, const typename Polygon<D>::Vec& x) {
     double r2 = 0.0;
-    for (const auto& y : p.v) r2 = std::max(r2, (y - x).squaredNorm());
+    for (int i = 0; i < p.n; ++i) r2 = std::max(r2, (p.v[i] - x).squaredNorm());
     return r2;
 }
 
@@ -110,7 +115,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     auto point = [&](int32_t i) { return Vec(Eigen::Map<const Vec>(surface.points.row(i).data())); };
 
     // Nearest neighbours of every site, computed once per diagram; rarely, a cell needs more.
-    const int k_cached = static_cast<int>(std::min<long>(ns, 20));
+    const int k_cached = static_cast<int>(std::min<long>(ns, 16));
     std::vector<int32_t> nn(static_cast<size_t>(ns) * k_cached);
     std::vector<double> nn_d2(nn.size());
 #pragma omp parallel for num_threads(threads) schedule(static, 256)
@@ -119,8 +124,10 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
 #pragma omp parallel num_threads(threads)
     {
         const int thread = omp_get_thread_num();
-        Polygon<D> poly, scratch;
-        std::vector<double> side;
+        // Two polygons per thread, swapped by pointer after each clip (heap: they are large).
+        auto buffers = std::make_unique<Polygon<D>[]>(2);
+        Polygon<D>* poly = &buffers[0];
+        Polygon<D>* scratch = &buffers[1];
         std::vector<int32_t> visited, queue, more;
         std::vector<double> more_d2;
         int32_t seeds[4];
@@ -146,11 +153,11 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 const int32_t k = queue.back();
                 queue.pop_back();
                 const Vec vk = site(k);
-                poly.clear();
-                poly.push(x0, -1);
-                poly.push(x1, -2);
-                poly.push(x2, -3);
-                double r2 = max_squared_distance(poly, vk);
+                poly->n = 0;
+                poly->push(x0, -1);
+                poly->push(x1, -2);
+                poly->push(x2, -3);
+                double r2 = max_squared_distance(*poly, vk);
                 const int32_t* list = &nn[k * k_cached];
                 const double* list_d2 = &nn_d2[k * k_cached];
                 int count = k_cached;
@@ -180,22 +187,24 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         }
                         continue;
                     }
-                    clip_by_bisector<D>(poly, vk, site(l), l, scratch, side);
+                    if (poly->full()) break; // cannot happen for a Voronoi cell of a sane sampling
+                    if (!clip_by_bisector<D>(*poly, vk, Eigen::Map<const Vec>(sites.row(l).data()), l, *scratch))
+                        continue;
                     std::swap(poly, scratch);
-                    if (poly.v.size() < 3) { empty = true; break; }
-                    r2 = max_squared_distance(poly, vk);
+                    if (poly->n < 3) { empty = true; break; }
+                    r2 = max_squared_distance(*poly, vk);
                 }
                 if (empty) continue;
                 any_polygon = true;
                 RvdPolygon out;
                 out.site = k;
                 out.triangle = static_cast<int32_t>(p);
-                out.size = static_cast<int>(poly.v.size());
-                out.vertices = poly.v.front().data(); // Vec has no padding: size x D doubles
-                out.edges = poly.e.data();
+                out.size = poly->n;
+                out.vertices = poly->v[0].data(); // Vec has no padding: size x D doubles
+                out.edges = poly->e;
                 visit(thread, out);
-                for (int32_t id : poly.e)
-                    if (id >= 0 && std::find(visited.begin(), visited.end(), id) == visited.end()) {
+                for (int i = 0; i < poly->n; ++i)
+                    if (const int32_t id = poly->e[i]; id >= 0 && std::find(visited.begin(), visited.end(), id) == visited.end()) {
                         visited.push_back(id);
                         queue.push_back(id);
                     }

@@ -1,0 +1,153 @@
+#include "liftremesh/pipeline.h"
+
+#include "liftremesh/density.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/hole_filling.h"
+#include "liftremesh/mesh_io.h"
+#include "liftremesh/neighbor_search.h"
+#include "liftremesh/normals.h"
+#include "liftremesh/optimizer.h"
+#include "liftremesh/quality.h"
+#include "liftremesh/rdt.h"
+#include "liftremesh/repair.h"
+#include "liftremesh/rvd.h"
+#include "liftremesh/sampling.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace liftremesh {
+
+namespace {
+
+constexpr long kMaxSites = 20'000'000;
+
+// Times stages into the report and gives the caller a chance to cancel between them.
+class StageClock {
+public:
+    StageClock(RemeshReport& report, const ProgressCallback& progress) : report_(report), progress_(progress) {}
+    void begin(const char* stage) {
+        if (progress_ && !progress_(Progress{stage, 0, 0, 0.0, 0.0}))
+            throw Cancelled(std::string("remeshing was cancelled before stage '") + stage + "'");
+        stage_ = stage;
+        start_ = std::chrono::steady_clock::now();
+    }
+    void end() {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        report_.timings.push_back({stage_, s});
+    }
+
+private:
+    RemeshReport& report_;
+    const ProgressCallback& progress_;
+    std::string stage_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// Which holes of the output to fill (Section 5.2.2): those the input does not have. A boundary
+// loop of the output that mostly runs within `reach` of a boundary edge of the input is the
+// input's own boundary (an open surface) and stays open; any other loop is a gap artefact.
+std::function<bool(const std::vector<int32_t>&)> hole_is_artefact(const Mesh& input, const Points& output_points,
+                                                                  double reach) {
+    std::vector<Eigen::Vector3d> samples;
+    for (const EdgeCount& e : edge_counts(input.triangles)) {
+        if (e.count != 1) continue;
+        const Eigen::Vector3d a = input.points.row(e.a).transpose(), b = input.points.row(e.b).transpose();
+        const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.25 * reach))));
+        for (int i = 0; i <= steps; ++i) samples.push_back(a + (b - a) * (static_cast<double>(i) / steps));
+    }
+    if (samples.empty()) return {}; // closed input: every hole is an artefact
+    LiftedPoints pts(static_cast<Eigen::Index>(samples.size()), 3);
+    for (size_t i = 0; i < samples.size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = samples[i].transpose();
+    auto tree = std::make_shared<KdTree>(pts);
+    return [tree, &output_points, reach](const std::vector<int32_t>& loop) {
+        long near = 0;
+        for (int32_t v : loop) {
+            int32_t i;
+            double d2;
+            tree->knn(output_points.row(v).data(), 1, &i, &d2);
+            if (d2 <= reach * reach) ++near;
+        }
+        return 2 * near < static_cast<long>(loop.size());
+    };
+}
+
+} // namespace
+
+long target_site_count(const RemeshParams& params, double area) {
+    if (params.target_edge_length <= 0.0) return params.target_vertices;
+    // An equilateral mesh of edge h has about 2 triangles per vertex: area sqrt(3)/2 h^2 per vertex.
+    const double h = params.target_edge_length;
+    const double n = std::round(area / (std::sqrt(3.0) / 2.0 * h * h));
+    if (!(n >= 4.0) || n > static_cast<double>(kMaxSites))
+        throw InvalidInput("edge_length = " + std::to_string(h) + " gives " + std::to_string(n) +
+                           " vertices on this surface of area " + std::to_string(area) + ": expected 4 to " +
+                           std::to_string(kMaxSites));
+    return static_cast<long>(n);
+}
+
+RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const ProgressCallback& progress) {
+    params.validate();
+    RemeshResult result;
+    RemeshReport& report = result.report;
+    StageClock clock(report, progress);
+
+    clock.begin("prepare");
+    check_mesh(input_raw, "input");
+    Mesh input = input_raw;
+    weld_exact(input);
+    remove_unreferenced_vertices(input);
+    if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
+    const long sites_wanted = target_site_count(params, surface_area(input));
+    report.input = measure_quality(input);
+    report.bbox_diagonal = bounding_box_diagonal(input.points);
+    const UnitBallTransform to_unit = unit_ball_transform(input); // Section 5.1
+    Mesh unit = input;
+    apply_transform(to_unit, unit.points);
+    clock.end();
+
+    clock.begin("normals");
+    const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
+    const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
+    const LiftedSurface surface = make_lifted_surface(lift(unit.points, normals, params.nu), // Eq. 12
+                                                      unit.triangles, density_weights(rho, params.delta));
+    clock.end();
+
+    clock.begin("optimize");
+    LiftedPoints sites = random_sites(surface, sites_wanted, params.seed);
+    const OptimizeResult opt = optimize_sites(surface, sites, params.sigma, params.iterations, params.threads, progress);
+    report.sites = sites.rows();
+    report.iterations = opt.iterations;
+    report.energy_initial = opt.energy_initial;
+    report.energy_final = opt.energy_final;
+    clock.end();
+
+    clock.begin("rdt");
+    Mesh& out = result.mesh;
+    out.triangles = restricted_delaunay(surface, sites, params.threads); // Eq. 4
+    out.points = sites.leftCols(3);                                      // Algorithm 3, line 11
+    if (out.triangles.rows() == 0)
+        throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
+    clock.end();
+
+    clock.begin("repair");
+    const RepairStats repaired = make_manifold(out);
+    report.triangles_removed = repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
+    if (params.fill_holes) {
+        const double spacing = std::sqrt(surface_area(unit) / (std::sqrt(3.0) / 2.0 * sites_wanted));
+        report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
+    }
+    if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
+    undo_transform(to_unit, out.points);
+    clock.end();
+
+    clock.begin("quality");
+    report.output = measure_quality(out);
+    const DistanceStats distance = hausdorff_distance(input, out);
+    report.hausdorff_relative = distance.hausdorff / report.bbox_diagonal;
+    report.mean_distance_relative = distance.mean / report.bbox_diagonal;
+    clock.end();
+    return result;
+}
+
+} // namespace liftremesh

@@ -1,0 +1,30 @@
+// The remesher's entry point: Algorithm 3 from an input mesh to a clean output mesh and report.
+#pragma once
+
+#include "liftremesh/mesh.h"
+#include "liftremesh/params.h"
+#include "liftremesh/progress.h"
+#include "liftremesh/report.h"
+
+namespace liftremesh {
+
+struct RemeshResult {
+    Mesh mesh;           //!< the remeshed surface, in the input's units
+    RemeshReport report; //!< quality of input and output, distance, timings
+};
+
+//! Remeshes `input` (any triangle soup: welded, checked, never modified):
+//!  1. weld exactly equal vertices; centre and scale into the unit ball (Section 5.1);
+//!  2. vertex normals on geometric neighbourhoods of radius eta (5.2.1), densities (Eqs. 22-24),
+//!     lifting x + nu n (Eq. 12);
+//!  3. random sites, L-BFGS on the objective of Eq. 25 in two phases (6.2.2);
+//!  4. restricted Delaunay triangulation (Eq. 4) projected to R^3 (Algorithm 3, line 11);
+//!  5. a clean oriented manifold (repair.h), holes the input does not have filled (5.2.2);
+//!  6. quality report (Eq. 26, Hausdorff distance to the input).
+//! Throws InvalidInput (bad mesh or parameters), NumericalFailure, TopologyFailure, Cancelled.
+RemeshResult remesh(const Mesh& input, const RemeshParams& params, const ProgressCallback& progress = {});
+
+//! Number of sites the parameters ask for on a mesh of the given area (input units).
+long target_site_count(const RemeshParams& params, double area);
+
+} // namespace liftremesh

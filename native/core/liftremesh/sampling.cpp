@@ -1,0 +1,42 @@
+#include "liftremesh/sampling.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace liftremesh {
+
+LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed) {
+    const Eigen::Index nf = surface.triangles.rows();
+    std::vector<double> cumulative(nf);
+    double total = 0.0;
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        if (surface.valid[f])
+            total += triangle_area(surface.points.row(surface.triangles(f, 0)), surface.points.row(surface.triangles(f, 1)),
+                                   surface.points.row(surface.triangles(f, 2))) *
+                     std::sqrt(surface.weights[f]);
+        cumulative[f] = total;
+    }
+    if (!(total > 0.0)) throw InvalidInput("the surface has no triangle of positive area to place sites on");
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    LiftedPoints sites(count, surface.dimension());
+    for (long k = 0; k < count; ++k) {
+        const double r = u01(rng) * total;
+        const Eigen::Index f = std::min<Eigen::Index>(
+            nf - 1, std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin());
+        double a = u01(rng), b = u01(rng);
+        if (a + b > 1.0) {
+            a = 1.0 - a;
+            b = 1.0 - b;
+        }
+        sites.row(k) = (1.0 - a - b) * surface.points.row(surface.triangles(f, 0)) +
+                       a * surface.points.row(surface.triangles(f, 1)) + b * surface.points.row(surface.triangles(f, 2));
+    }
+    return sites;
+}
+
+} // namespace liftremesh
