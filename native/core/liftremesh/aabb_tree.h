@@ -17,12 +17,16 @@ struct ClosestPoint {
 class AabbTree {
 public:
     //! Builds the tree over mesh.triangles (the mesh is copied; the tree owns what it needs).
+    //! Median split on the longest axis of the triangle centroids, at most 4 triangles a leaf.
+    //! Throws InvalidInput if a triangle index is out of range. A mesh without triangles is
+    //! allowed: every query then returns triangle -1 at infinite distance.
     explicit AabbTree(const Mesh& mesh);
     ~AabbTree();
     AabbTree(AabbTree&&) noexcept;
     AabbTree& operator=(AabbTree&&) noexcept;
 
-    //! Closest point of the mesh to q. Thread-safe (const).
+    //! Closest point of the mesh to q (exact, via closest_point_on_triangle). Thread-safe (const).
+    //! Where several triangles are equally near, which one is reported is unspecified.
     ClosestPoint closest(const Eigen::Vector3d& q) const;
 
 private:

@@ -26,6 +26,11 @@ struct MeshQuality {
 
 //! Measures `mesh`. `sharp_angle_deg` is the angle between the two face normals above which an
 //! edge counts as sharp (60 degrees in the project's acceptance criteria).
+//! Details: a non-manifold vertex is one whose incident triangles form two or more groups not
+//! connected through edges at the vertex (a non-manifold edge alone does not make its vertices
+//! non-manifold). The sharp-edge angle does not depend on orientation: where the two triangles
+//! of an edge disagree in orientation one normal is flipped first. Empty meshes give zeros.
+//! Throws InvalidInput if a triangle index is out of range.
 MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg = 60.0);
 
 struct DistanceStats {
@@ -37,6 +42,10 @@ struct DistanceStats {
 
 //! Two-sided Hausdorff distance, exact point-to-triangle distances from `samples` points on
 //! each mesh (all its vertices first, then area-uniform random points, fixed `seed`).
+//! Every referenced vertex is used even when there are more than `samples`. The queries run in
+//! parallel with OpenMP (default thread count; set it with omp_set_num_threads); the result
+//! does not depend on the thread count. Throws InvalidInput (via check_mesh) for an empty mesh,
+//! a non-finite coordinate or an index out of range.
 DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples = 100000, std::uint64_t seed = 7);
 
 } // namespace liftremesh

@@ -28,7 +28,9 @@ struct RemeshReport {
     std::vector<StageTime> timings;
 };
 
-//! The report as a JSON object (keys documented in the README).
+//! The report as a JSON object (keys documented in the README), indented by two spaces and
+//! ending with a newline. Doubles have 9 significant digits; NaN and infinities are written
+//! as null. A stage listed twice in `timings` appears once, with the summed time.
 std::string to_json(const RemeshReport& report);
 
 } // namespace liftremesh

@@ -1,0 +1,160 @@
+#include "liftremesh/aabb_tree.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+constexpr int kLeafSize = 4;  // triangles per leaf at most
+constexpr int kMaxDepth = 64; // median splits halve the count: depth <= log2(#F) + 1 <= 33
+
+//! A node of the tree. Inner nodes have two children stored next to each other.
+struct Node {
+    std::array<double, 3> lo, hi; //!< bounding box of the node's triangles
+    int32_t first;                //!< leaf: first triangle (tree order); inner: index of the left child
+    int32_t count;                //!< leaf: number of triangles (>= 1); inner: 0
+};
+
+//! Squared distance from q to the box (0 inside).
+double box_squared_distance(const Node& node, const Eigen::Vector3d& q) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double below = node.lo[k] - q[k], above = q[k] - node.hi[k];
+        const double d = std::max({below, above, 0.0});
+        d2 += d * d;
+    }
+    return d2;
+}
+
+// Sort key that keeps a strict weak order when a coordinate is NaN.
+double sort_key(double x) { return std::isnan(x) ? std::numeric_limits<double>::infinity() : x; }
+
+} // namespace
+
+struct AabbTree::Impl {
+    std::vector<Node> nodes;              //!< nodes[0] is the root (empty tree: no node)
+    std::vector<Eigen::Vector3d> corners; //!< 3 corners per triangle, in tree order
+    std::vector<int32_t> ids;             //!< input triangle index, in tree order
+
+    //! Builds the subtree of nodes[index] over order[begin, end), splitting at the median
+    //! centroid along the longest axis of the centroids' box.
+    void build(int32_t index, std::vector<int32_t>& order, const std::vector<Eigen::Vector3d>& centroids,
+               const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, int32_t begin, int32_t end) {
+        Node node;
+        node.lo.fill(std::numeric_limits<double>::infinity());
+        node.hi.fill(-std::numeric_limits<double>::infinity());
+        Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+        Eigen::Vector3d chi = -clo;
+        for (int32_t i = begin; i < end; ++i) {
+            for (const auto& p : triangles[order[i]])
+                for (int k = 0; k < 3; ++k) {
+                    node.lo[k] = std::min(node.lo[k], p[k]);
+                    node.hi[k] = std::max(node.hi[k], p[k]);
+                }
+            clo = clo.cwiseMin(centroids[order[i]]);
+            chi = chi.cwiseMax(centroids[order[i]]);
+        }
+        if (end - begin <= kLeafSize) {
+            node.first = begin;
+            node.count = end - begin;
+            nodes[index] = node;
+            return;
+        }
+        int axis = 0;
+        (chi - clo).maxCoeff(&axis);
+        const int32_t mid = begin + (end - begin) / 2;
+        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](int32_t s, int32_t t) {
+            return sort_key(centroids[s][axis]) < sort_key(centroids[t][axis]);
+        });
+        const auto left = static_cast<int32_t>(nodes.size());
+        nodes.emplace_back();
+        nodes.emplace_back();
+        node.first = left;
+        node.count = 0;
+        nodes[index] = node;
+        build(left, order, centroids, triangles, begin, mid);
+        build(left + 1, order, centroids, triangles, mid, end);
+    }
+};
+
+AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
+    const Eigen::Index nf = mesh.triangles.rows(), nv = mesh.points.rows();
+    std::vector<std::array<Eigen::Vector3d, 3>> triangles(static_cast<size_t>(nf));
+    std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        for (int j = 0; j < 3; ++j) {
+            const int32_t v = mesh.triangles(f, j);
+            if (v < 0 || v >= nv)
+                throw InvalidInput("AABB tree: triangle " + std::to_string(f) + " refers to vertex " +
+                                   std::to_string(v) + ", expected an index in [0, " + std::to_string(nv) + ")");
+            triangles[f][j] = mesh.points.row(v).transpose();
+        }
+        centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
+    }
+    if (nf == 0) return;
+
+    std::vector<int32_t> order(static_cast<size_t>(nf));
+    std::iota(order.begin(), order.end(), 0);
+    impl_->nodes.reserve(2 * static_cast<size_t>(nf) / kLeafSize + 2);
+    impl_->nodes.emplace_back();
+    impl_->build(0, order, centroids, triangles, 0, static_cast<int32_t>(nf));
+
+    impl_->ids = order;
+    impl_->corners.reserve(3 * static_cast<size_t>(nf));
+    for (const int32_t f : order)
+        for (const auto& p : triangles[f]) impl_->corners.push_back(p);
+}
+
+AabbTree::~AabbTree() = default;
+AabbTree::AabbTree(AabbTree&&) noexcept = default;
+AabbTree& AabbTree::operator=(AabbTree&&) noexcept = default;
+
+ClosestPoint AabbTree::closest(const Eigen::Vector3d& q) const {
+    ClosestPoint best{Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()),
+                      std::numeric_limits<double>::infinity(), -1};
+    const auto& nodes = impl_->nodes;
+    if (nodes.empty()) return best;
+
+    // Depth-first, nearer child first; a node is skipped once its box is no nearer than the best.
+    std::array<std::pair<int32_t, double>, 2 * kMaxDepth> stack;
+    int top = 0;
+    stack[top++] = {0, box_squared_distance(nodes[0], q)};
+    while (top > 0) {
+        const auto [index, box_d2] = stack[--top];
+        if (box_d2 >= best.squared_distance) continue;
+        const Node& node = nodes[index];
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t) {
+                const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
+                const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
+                const double d2 = (p - q).squaredNorm();
+                if (d2 < best.squared_distance) best = {p, d2, impl_->ids[t]};
+            }
+            continue;
+        }
+        const double dl = box_squared_distance(nodes[node.first], q);
+        const double dr = box_squared_distance(nodes[node.first + 1], q);
+        assert(top + 2 <= static_cast<int>(stack.size()));
+        if (dl <= dr) {
+            stack[top++] = {node.first + 1, dr};
+            stack[top++] = {node.first, dl};
+        } else {
+            stack[top++] = {node.first, dl};
+            stack[top++] = {node.first + 1, dr};
+        }
+    }
+    return best;
+}
+
+} // namespace liftremesh

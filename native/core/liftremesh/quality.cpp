@@ -1,0 +1,250 @@
+#include "liftremesh/quality.h"
+
+#include "liftremesh/aabb_tree.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
+    return mesh.points.row(mesh.triangles(f, j)).transpose();
+}
+
+void check_indices(const Mesh& mesh, const char* what) {
+    const Eigen::Index n = mesh.points.rows();
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (mesh.triangles(f, j) < 0 || mesh.triangles(f, j) >= n)
+                throw InvalidInput(std::string(what) + " mesh triangle " + std::to_string(f) + " refers to vertex " +
+                                   std::to_string(mesh.triangles(f, j)) + ", expected an index in [0, " +
+                                   std::to_string(n) + ")");
+}
+
+// ---- per triangle -------------------------------------------------------------------------------
+
+//! Histogram bin of kappa: [0, 0.1) -> 0, ..., [0.9, 1.0] -> 9 (kappa == 1 in the last bin).
+int kappa_bin(double kappa) {
+    if (!(kappa > 0.0)) return 0; // also NaN, from non-finite coordinates
+    return std::min(9, static_cast<int>(kappa * 10.0));
+}
+
+void measure_triangles(const Mesh& mesh, MeshQuality& q) {
+    const Eigen::Index nf = mesh.triangles.rows();
+    q.triangles = static_cast<long>(nf);
+    if (nf == 0) return;
+    double kappa_sum = 0.0;
+    q.kappa_min = std::numeric_limits<double>::infinity();
+    q.min_angle_deg = 180.0;
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        const Eigen::Vector3d a = corner(mesh, f, 0), b = corner(mesh, f, 1), c = corner(mesh, f, 2);
+        const double kappa = triangle_kappa(a, b, c); // Eq. 26
+        q.kappa_min = std::min(q.kappa_min, kappa);
+        kappa_sum += kappa;
+        ++q.kappa_histogram[kappa_bin(kappa)];
+        q.min_angle_deg = std::min(q.min_angle_deg, triangle_min_angle_deg(a, b, c));
+    }
+    q.kappa_mean = kappa_sum / static_cast<double>(nf);
+}
+
+// ---- per edge -----------------------------------------------------------------------------------
+
+//! One triangle's use of an undirected edge (a <= b); `forward` if the triangle runs a -> b.
+struct EdgeUse {
+    int32_t a, b;
+    int32_t triangle;
+    bool forward;
+    bool operator<(const EdgeUse& o) const { return a != o.a ? a < o.a : b != o.b ? b < o.b : triangle < o.triangle; }
+};
+
+std::vector<EdgeUse> sorted_edge_uses(const Triangles& triangles) {
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * static_cast<size_t>(triangles.rows()));
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t u = triangles(f, j), v = triangles(f, (j + 1) % 3);
+            uses.push_back({std::min(u, v), std::max(u, v), static_cast<int32_t>(f), u <= v});
+        }
+    std::sort(uses.begin(), uses.end());
+    return uses;
+}
+
+//! Angle in degrees between the normals of the two triangles on a manifold edge. When the two
+//! triangles disagree in orientation one normal is flipped, so that the measure is the dihedral
+//! deviation from flat whatever the orientation.
+double normal_angle_deg(const Mesh& mesh, const EdgeUse& s, const EdgeUse& t) {
+    const Eigen::Vector3d n1 =
+        triangle_normal(corner(mesh, s.triangle, 0), corner(mesh, s.triangle, 1), corner(mesh, s.triangle, 2));
+    Eigen::Vector3d n2 =
+        triangle_normal(corner(mesh, t.triangle, 0), corner(mesh, t.triangle, 1), corner(mesh, t.triangle, 2));
+    if (s.forward == t.forward) n2 = -n2;
+    return std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / M_PI;
+}
+
+void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
+    const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i;
+        while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
+        const size_t count = j - i;
+        if (count == 1) ++q.boundary_edges;
+        if (count >= 3) ++q.nonmanifold_edges;
+        if (count == 2) {
+            if (uses[i].forward == uses[i + 1].forward) q.oriented = false;
+            if (normal_angle_deg(mesh, uses[i], uses[i + 1]) > sharp_angle_deg)
+                q.sharp_edge_length += (mesh.points.row(uses[i].a) - mesh.points.row(uses[i].b)).norm();
+        }
+        i = j;
+    }
+}
+
+// ---- per vertex ---------------------------------------------------------------------------------
+
+//! Number of vertices whose incident triangles fall into two or more groups that are not
+//! connected through edges at the vertex (e.g. two cones touching at their apex). The triangles
+//! around v are edge-connected exactly when their opposite edges (the link of v) form one
+//! connected graph, which a small union-find over the link vertices decides.
+long count_nonmanifold_vertices(const Mesh& mesh) {
+    const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
+    // Vertex -> incident triangles, compressed (offsets into `incident`).
+    std::vector<int32_t> offsets(static_cast<size_t>(nv) + 1, 0);
+    for (Eigen::Index f = 0; f < nf; ++f)
+        for (int j = 0; j < 3; ++j) ++offsets[mesh.triangles(f, j) + 1];
+    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+    std::vector<int32_t> incident(static_cast<size_t>(offsets.back()));
+    std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (Eigen::Index f = 0; f < nf; ++f)
+        for (int j = 0; j < 3; ++j) incident[fill[mesh.triangles(f, j)]++] = static_cast<int32_t>(f);
+
+    long count = 0;
+    std::vector<std::pair<int32_t, int32_t>> link;
+    std::vector<int32_t> nodes, parent;
+    auto find = [&](int32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (Eigen::Index v = 0; v < nv; ++v) {
+        link.clear();
+        for (int32_t k = offsets[v]; k < offsets[v + 1]; ++k) {
+            const int32_t f = incident[k];
+            int j = 0;
+            while (mesh.triangles(f, j) != v) ++j;
+            link.emplace_back(mesh.triangles(f, (j + 1) % 3), mesh.triangles(f, (j + 2) % 3));
+        }
+        if (link.size() < 2) continue;
+        nodes.clear();
+        for (const auto& [s, t] : link) {
+            nodes.push_back(s);
+            nodes.push_back(t);
+        }
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+        parent.resize(nodes.size());
+        std::iota(parent.begin(), parent.end(), 0);
+        auto slot = [&](int32_t x) {
+            return static_cast<int32_t>(std::lower_bound(nodes.begin(), nodes.end(), x) - nodes.begin());
+        };
+        int32_t components = static_cast<int32_t>(nodes.size());
+        for (const auto& [s, t] : link) {
+            const int32_t rs = find(slot(s)), rt = find(slot(t));
+            if (rs != rt) {
+                parent[rs] = rt;
+                --components;
+            }
+        }
+        if (components > 1) ++count;
+    }
+    return count;
+}
+
+// ---- sampling and distances -------------------------------------------------------------------
+
+//! Uniform double in [0, 1) from the top 53 bits: the same sequence on every standard library.
+double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+//! The referenced vertices of `mesh` (in index order), then area-uniform random points until
+//! `samples` points in all (none if the vertices already reach it).
+std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, long samples, std::mt19937_64& rng) {
+    const Eigen::Index nf = mesh.triangles.rows();
+    std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
+    for (Eigen::Index f = 0; f < nf; ++f)
+        for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    std::vector<Eigen::Vector3d> points;
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
+        if (used[i]) points.push_back(mesh.points.row(i).transpose());
+
+    std::vector<double> cumulative(static_cast<size_t>(nf));
+    double total = 0.0;
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        const double area = triangle_area(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2));
+        total += std::isfinite(area) ? area : 0.0;
+        cumulative[f] = total;
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return points;
+    const long extra = samples - static_cast<long>(points.size());
+    for (long s = 0; s < extra; ++s) {
+        const double pick = uniform01(rng) * total;
+        const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), pick);
+        const Eigen::Index f = std::min<Eigen::Index>(it - cumulative.begin(), nf - 1);
+        // Uniform point in a triangle: (1 - sqrt r1) a + sqrt r1 (1 - r2) b + sqrt r1 r2 c.
+        const double r1 = std::sqrt(uniform01(rng)), r2 = uniform01(rng);
+        points.push_back((1.0 - r1) * corner(mesh, f, 0) + r1 * (1.0 - r2) * corner(mesh, f, 1) +
+                         r1 * r2 * corner(mesh, f, 2));
+    }
+    return points;
+}
+
+//! Distance from each point to the tree's mesh; the loop is parallel, the result deterministic.
+std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, const AabbTree& tree) {
+    std::vector<double> d(points.size());
+    const long n = static_cast<long>(points.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) d[i] = std::sqrt(tree.closest(points[i]).squared_distance);
+    return d;
+}
+
+} // namespace
+
+MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
+    check_indices(mesh, "measured");
+    MeshQuality q;
+    std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    q.vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
+    measure_triangles(mesh, q);
+    measure_edges(mesh, sharp_angle_deg, q);
+    q.nonmanifold_vertices = count_nonmanifold_vertices(mesh);
+    q.euler_characteristic = euler_characteristic(mesh);
+    return q;
+}
+
+DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples, std::uint64_t seed) {
+    check_mesh(a, "first");
+    check_mesh(b, "second");
+    std::mt19937_64 rng(seed);
+    const std::vector<Eigen::Vector3d> on_a = sample_surface(a, samples, rng);
+    const std::vector<Eigen::Vector3d> on_b = sample_surface(b, samples, rng);
+    const std::vector<double> a_to_b = distances_to(on_a, AabbTree(b));
+    const std::vector<double> b_to_a = distances_to(on_b, AabbTree(a));
+
+    DistanceStats stats;
+    stats.a_to_b = *std::max_element(a_to_b.begin(), a_to_b.end());
+    stats.b_to_a = *std::max_element(b_to_a.begin(), b_to_a.end());
+    stats.hausdorff = std::max(stats.a_to_b, stats.b_to_a);
+    const double sum =
+        std::accumulate(a_to_b.begin(), a_to_b.end(), 0.0) + std::accumulate(b_to_a.begin(), b_to_a.end(), 0.0);
+    stats.mean = sum / static_cast<double>(a_to_b.size() + b_to_a.size());
+    return stats;
+}
+
+} // namespace liftremesh

@@ -1,0 +1,117 @@
+#include "liftremesh/report.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+//! A number as JSON: 9 significant digits, locale-independent; NaN and infinities as null.
+std::string json_number(double value) {
+    if (!std::isfinite(value)) return "null";
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 9);
+    return std::string(buffer, result.ptr);
+}
+
+std::string json_number(long value) { return std::to_string(value); }
+
+//! A string as JSON: quotes, backslashes and control characters escaped.
+std::string json_string(const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\r': out += "\\r"; break;
+        case '\t': out += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20) {
+                char escape[8];
+                std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned char>(c));
+                out += escape;
+            } else {
+                out += c;
+            }
+        }
+    }
+    return out + "\"";
+}
+
+//! Members of a JSON object as (key, already-formatted value), written one per line.
+using Members = std::vector<std::pair<std::string, std::string>>;
+
+std::string json_object(const Members& members, int indent) {
+    if (members.empty()) return "{}";
+    const std::string inner(static_cast<size_t>(indent + 2), ' ');
+    std::string out = "{\n";
+    for (size_t i = 0; i < members.size(); ++i) {
+        out += inner + json_string(members[i].first) + ": " + members[i].second;
+        out += i + 1 < members.size() ? ",\n" : "\n";
+    }
+    return out + std::string(static_cast<size_t>(indent), ' ') + "}";
+}
+
+std::string json_quality(const MeshQuality& q, int indent) {
+    std::string histogram = "[";
+    for (size_t i = 0; i < q.kappa_histogram.size(); ++i)
+        histogram += (i > 0 ? ", " : "") + json_number(q.kappa_histogram[i]);
+    histogram += "]";
+    return json_object({{"vertices", json_number(q.vertices)},
+                        {"triangles", json_number(q.triangles)},
+                        {"kappa_min", json_number(q.kappa_min)},
+                        {"kappa_mean", json_number(q.kappa_mean)},
+                        {"kappa_histogram", histogram},
+                        {"min_angle_deg", json_number(q.min_angle_deg)},
+                        {"boundary_edges", json_number(q.boundary_edges)},
+                        {"nonmanifold_edges", json_number(q.nonmanifold_edges)},
+                        {"nonmanifold_vertices", json_number(q.nonmanifold_vertices)},
+                        {"oriented", q.oriented ? "true" : "false"},
+                        {"euler_characteristic", json_number(static_cast<long>(q.euler_characteristic))},
+                        {"sharp_edge_length", json_number(q.sharp_edge_length)}},
+                       indent);
+}
+
+//! Stage timings in their order; a stage named twice appears once with the summed time, so that
+//! the object has no duplicate key.
+std::string json_timings(const std::vector<StageTime>& timings, int indent) {
+    std::vector<std::pair<std::string, double>> merged;
+    for (const StageTime& t : timings) {
+        auto it = merged.begin();
+        while (it != merged.end() && it->first != t.stage) ++it;
+        if (it == merged.end())
+            merged.emplace_back(t.stage, t.seconds);
+        else
+            it->second += t.seconds;
+    }
+    Members members;
+    for (const auto& [stage, seconds] : merged) members.emplace_back(stage, json_number(seconds));
+    return json_object(members, indent);
+}
+
+} // namespace
+
+std::string to_json(const RemeshReport& report) {
+    return json_object({{"input", json_quality(report.input, 2)},
+                        {"output", json_quality(report.output, 2)},
+                        {"bbox_diagonal", json_number(report.bbox_diagonal)},
+                        {"hausdorff_relative", json_number(report.hausdorff_relative)},
+                        {"mean_distance_relative", json_number(report.mean_distance_relative)},
+                        {"sites", json_number(report.sites)},
+                        {"iterations", json_number(static_cast<long>(report.iterations))},
+                        {"energy_initial", json_number(report.energy_initial)},
+                        {"energy_final", json_number(report.energy_final)},
+                        {"holes_filled", json_number(report.holes_filled)},
+                        {"triangles_removed", json_number(report.triangles_removed)},
+                        {"timings", json_timings(report.timings, 2)}},
+                       0) +
+           "\n";
+}
+
+} // namespace liftremesh

@@ -1,0 +1,109 @@
+#include "helpers.h"
+#include "liftremesh/aabb_tree.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+using namespace liftremesh;
+
+namespace {
+
+//! Closest point by testing every triangle.
+ClosestPoint brute_force_closest(const Mesh& mesh, const Eigen::Vector3d& q) {
+    ClosestPoint best{Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(), -1};
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
+        const Eigen::Vector3d p = closest_point_on_triangle(q, mesh.points.row(mesh.triangles(f, 0)).transpose(),
+                                                            mesh.points.row(mesh.triangles(f, 1)).transpose(),
+                                                            mesh.points.row(mesh.triangles(f, 2)).transpose());
+        const double d2 = (p - q).squaredNorm();
+        if (d2 < best.squared_distance) best = {p, d2, static_cast<int32_t>(f)};
+    }
+    return best;
+}
+
+//! Checks the tree against brute force on `n` random queries in the cube [-extent, extent]^3.
+void expect_matches_brute_force(const Mesh& mesh, double extent, int n, std::uint64_t seed) {
+    const AabbTree tree(mesh);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> coordinate(-extent, extent);
+    for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3d q(coordinate(rng), coordinate(rng), coordinate(rng));
+        const ClosestPoint got = tree.closest(q);
+        const ClosestPoint want = brute_force_closest(mesh, q);
+        ASSERT_NEAR(got.squared_distance, want.squared_distance, 1e-12 * (1 + want.squared_distance)) << "query " << i;
+        ASSERT_GE(got.triangle, 0);
+        ASSERT_LT(got.triangle, mesh.triangles.rows());
+        // The reported point lies on the reported triangle and at the reported distance
+        // (ties between triangles sharing the closest point may pick either).
+        const Eigen::Vector3d on_triangle =
+            closest_point_on_triangle(q, mesh.points.row(mesh.triangles(got.triangle, 0)).transpose(),
+                                      mesh.points.row(mesh.triangles(got.triangle, 1)).transpose(),
+                                      mesh.points.row(mesh.triangles(got.triangle, 2)).transpose());
+        ASSERT_LT((on_triangle - got.point).norm(), 1e-12);
+        ASSERT_NEAR((got.point - q).squaredNorm(), got.squared_distance, 1e-12);
+        ASSERT_LT((got.point - want.point).norm(), 1e-6 + 1e-6 * std::sqrt(want.squared_distance));
+    }
+}
+
+} // namespace
+
+TEST(AabbTree, ClosestPointMatchesBruteForceOnIcosphere) {
+    expect_matches_brute_force(test::make_icosphere(3), 2.0, 2000, 1);
+    expect_matches_brute_force(test::make_icosphere(3), 0.3, 500, 2); // inside, far from the surface
+}
+
+TEST(AabbTree, ClosestPointMatchesBruteForceOnNonConvexShapes) {
+    expect_matches_brute_force(test::make_torus(1.0, 0.3, 40, 16), 1.5, 1000, 3);
+    expect_matches_brute_force(test::make_cube(1.0, 5), 3.0, 1000, 4);
+}
+
+TEST(AabbTree, VerticesAreAtDistanceZero) {
+    const Mesh mesh = test::make_icosphere(2);
+    const AabbTree tree(mesh);
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+        const ClosestPoint c = tree.closest(mesh.points.row(i).transpose());
+        EXPECT_EQ(c.squared_distance, 0.0);
+        EXPECT_TRUE(c.point == mesh.points.row(i).transpose());
+    }
+}
+
+TEST(AabbTree, HandlesDegenerateAndDuplicateTriangles) {
+    // Many triangles with the same centroid, and flat ones: the median split must still work.
+    Mesh mesh = test::make_icosphere(1);
+    const Eigen::Index n = mesh.triangles.rows();
+    mesh.triangles.conservativeResize(3 * n, 3);
+    for (Eigen::Index f = 0; f < n; ++f) {
+        mesh.triangles.row(n + f) = mesh.triangles.row(f);                                                 // duplicate
+        mesh.triangles.row(2 * n + f) << mesh.triangles(f, 0), mesh.triangles(f, 0), mesh.triangles(f, 1); // flat
+    }
+    expect_matches_brute_force(mesh, 1.5, 500, 5);
+}
+
+TEST(AabbTree, EmptyMeshAndBadIndices) {
+    Mesh empty;
+    empty.points.resize(0, 3);
+    empty.triangles.resize(0, 3);
+    const AabbTree tree(empty);
+    const ClosestPoint c = tree.closest(Eigen::Vector3d::Zero());
+    EXPECT_EQ(c.triangle, -1);
+    EXPECT_TRUE(std::isinf(c.squared_distance));
+
+    Mesh bad = test::make_icosphere(0);
+    bad.triangles(3, 1) = -1;
+    EXPECT_THROW(AabbTree{bad}, InvalidInput);
+}
+
+TEST(AabbTree, MovedTreeStillAnswers) {
+    const Mesh mesh = test::make_icosphere(2);
+    AabbTree a(mesh);
+    AabbTree b = std::move(a);
+    AabbTree c(test::make_icosphere(0));
+    c = std::move(b);
+    EXPECT_NEAR(std::sqrt(c.closest(Eigen::Vector3d(0, 0, 3)).squared_distance), 2.0, 0.05);
+}

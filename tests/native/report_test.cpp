@@ -1,0 +1,71 @@
+#include "liftremesh/report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using namespace liftremesh;
+
+namespace {
+
+RemeshReport sample_report() {
+    RemeshReport r;
+    r.input.vertices = 788;
+    r.input.triangles = 1580;
+    r.input.kappa_min = 0.0016;
+    r.input.kappa_mean = 0.4831234567891;
+    r.input.kappa_histogram = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+    r.input.oriented = false;
+    r.input.euler_characteristic = -2;
+    r.output.kappa_min = std::numeric_limits<double>::quiet_NaN();
+    r.output.sharp_edge_length = std::numeric_limits<double>::infinity();
+    r.bbox_diagonal = 123.5;
+    r.hausdorff_relative = 1.5e-5;
+    r.sites = 6000;
+    r.iterations = 42;
+    r.energy_final = -std::numeric_limits<double>::infinity();
+    r.timings = {{"read", 0.25}, {"optimize", 1.5}, {"read", 0.5}, {"odd \"name\"\n", 0.0}};
+    return r;
+}
+
+size_t count(const std::string& s, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+    return n;
+}
+
+} // namespace
+
+TEST(Report, JsonHasEveryKeyAndValidNumbers) {
+    const std::string json = to_json(sample_report());
+    for (const char* key :
+         {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
+          "energy_initial", "energy_final", "holes_filled", "triangles_removed", "timings"})
+        EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
+    for (const char* key :
+         {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
+          "nonmanifold_edges", "nonmanifold_vertices", "oriented", "euler_characteristic", "sharp_edge_length"})
+        EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 2u) << key;
+    EXPECT_NE(json.find("\"kappa_histogram\": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"kappa_mean\": 0.483123457,"), std::string::npos) << json; // 9 digits
+    EXPECT_NE(json.find("\"euler_characteristic\": -2"), std::string::npos);
+    EXPECT_NE(json.find("\"oriented\": false"), std::string::npos);
+    EXPECT_NE(json.find("\"oriented\": true"), std::string::npos);
+    EXPECT_NE(json.find("\"hausdorff_relative\": 1.5e-05"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"sites\": 6000"), std::string::npos);
+    // Non-finite values are null: NaN, inf and -inf are not JSON.
+    EXPECT_EQ(count(json, "null"), 3u) << json;
+    EXPECT_EQ(json.find("nan"), std::string::npos);
+    EXPECT_EQ(json.find("inf"), std::string::npos);
+    // A stage timed twice is summed, strings are escaped.
+    EXPECT_NE(json.find("\"read\": 0.75"), std::string::npos) << json;
+    EXPECT_EQ(count(json, "\"read\""), 1u);
+    EXPECT_NE(json.find("\"odd \\\"name\\\"\\n\": 0"), std::string::npos) << json;
+    // Balanced and closed.
+    EXPECT_EQ(count(json, "{"), count(json, "}"));
+    EXPECT_EQ(json.front(), '{');
+    EXPECT_EQ(json.substr(json.size() - 2), "}\n");
+    EXPECT_EQ(json.find(",\n}"), std::string::npos);
+}
