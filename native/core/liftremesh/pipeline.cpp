@@ -1,6 +1,7 @@
 #include "liftremesh/pipeline.h"
 
 #include "liftremesh/density.h"
+#include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/hole_filling.h"
 #include "liftremesh/mesh_io.h"
@@ -138,6 +139,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
     }
     if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
+    report.edges_collapsed = collapse_short_edges(out);
     undo_transform(to_unit, out.points);
     clock.end();
 

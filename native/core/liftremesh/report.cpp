@@ -109,6 +109,7 @@ std::string to_json(const RemeshReport& report) {
                         {"energy_final", json_number(report.energy_final)},
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},
+                        {"edges_collapsed", json_number(report.edges_collapsed)},
                         {"timings", json_timings(report.timings, 2)}},
                        0) +
            "\n";

@@ -25,6 +25,7 @@ struct RemeshReport {
     double energy_final = 0.0;           //!< objective at the end (final sigma)
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair
+    long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
     std::vector<StageTime> timings;
 };
 
