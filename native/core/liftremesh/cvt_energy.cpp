@@ -79,9 +79,9 @@ struct ObjectiveAccumulator {
 
 template <int D>
 double objective_fixed(const LiftedSurface& surface, const LiftedPoints& sites, double sigma, int threads,
-                       LiftedPoints& gradient) {
+                       LiftedPoints& gradient, RvdCache* cache) {
     ObjectiveAccumulator<D> acc(surface, sites, sigma, threads);
-    compute_rvd(surface, sites, threads, [&acc](int thread, const RvdPolygon& poly) { acc(thread, poly); });
+    compute_rvd(surface, sites, threads, [&acc](int thread, const RvdPolygon& poly) { acc(thread, poly); }, cache);
     double total = 0.0;
     gradient = LiftedPoints::Zero(sites.rows(), D);
     for (int t = 0; t < threads; ++t) {
@@ -94,10 +94,10 @@ double objective_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
 } // namespace
 
 double cvt_objective(const LiftedSurface& surface, const LiftedPoints& sites, double sigma, int threads,
-                     LiftedPoints& gradient) {
+                     LiftedPoints& gradient, RvdCache* cache) {
     const int n = resolve_threads(threads);
-    const double f = surface.dimension() == 3 ? objective_fixed<3>(surface, sites, sigma, n, gradient)
-                                              : objective_fixed<6>(surface, sites, sigma, n, gradient);
+    const double f = surface.dimension() == 3 ? objective_fixed<3>(surface, sites, sigma, n, gradient, cache)
+                                              : objective_fixed<6>(surface, sites, sigma, n, gradient, cache);
     if (!std::isfinite(f) || !gradient.allFinite())
         throw NumericalFailure("the objective or its gradient is not finite (degenerate sites or surface)");
     return f;

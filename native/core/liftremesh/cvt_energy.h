@@ -15,7 +15,8 @@ namespace liftremesh {
 //! Two printing slips of Algorithm 2 are corrected here (and checked against finite differences
 //! in cvt_energy_test): line 12 adds (sigma^2 - 1) |Omega| |w_perp|^2 (Eq. 11; no factor 2), and
 //! line 13 adds -2 |Omega| (sigma^2 - 1) w_perp, since w_perp = Pi (c - v_k) points away from v_k.
+//! `cache` (may be null) carries the diagram's neighbour lists between calls (RvdCache).
 double cvt_objective(const LiftedSurface& surface, const LiftedPoints& sites, double sigma, int threads,
-                     LiftedPoints& gradient);
+                     LiftedPoints& gradient, RvdCache* cache = nullptr);
 
 } // namespace liftremesh

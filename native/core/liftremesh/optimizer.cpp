@@ -35,6 +35,7 @@ struct Problem {
     bool cancelled = false;
     std::exception_ptr error; // an exception from the objective, rethrown after lbfgs returns
     LiftedPoints sites, gradient;
+    RvdCache cache; // neighbour lists carried from one iterate to the next
 };
 
 lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const int n,
@@ -42,7 +43,7 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
     auto& p = *static_cast<Problem*>(instance);
     try {
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
-        const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient);
+        const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, &p.cache);
         std::copy(p.gradient.data(), p.gradient.data() + n, g);
         ++p.evaluations;
         return f;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace liftremesh {
@@ -107,9 +108,36 @@ double max_squared_distance(const Polygon2& p, const Eigen::Vector2d& ab, double
     return r2 + off_plane2;
 }
 
+// Makes the cache's neighbour lists current for `positions` if the sites moved too far since
+// they were made (or there are none). Returns the largest displacement since then (0 if rebuilt).
+double refresh_neighbours(const KdTree& tree, const LiftedPoints& positions, int threads, RvdCache& cache) {
+    const long ns = positions.rows();
+    double delta = std::numeric_limits<double>::infinity();
+    if (cache.anchor.rows() == ns && cache.k > 0) delta = (positions - cache.anchor).rowwise().norm().maxCoeff();
+    if (delta <= cache.rebuild_distance) return delta;
+    cache.k = static_cast<int>(std::min<long>(ns, 16));
+    cache.anchor = positions;
+    cache.neighbours.resize(static_cast<size_t>(ns) * cache.k);
+    cache.distances2.resize(cache.neighbours.size());
+    const int k = cache.k;
+#pragma omp parallel for num_threads(threads) schedule(static, 256)
+    for (long s = 0; s < ns; ++s)
+        tree.knn(positions.row(s).data(), k, &cache.neighbours[s * k], &cache.distances2[s * k]);
+    // Typical spacing: the median distance to the nearest other site.
+    std::vector<double> nearest;
+    for (long s = 0; s < ns; ++s)
+        if (k > 1) nearest.push_back(std::sqrt(cache.distances2[s * k + 1]));
+    if (!nearest.empty()) {
+        std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+        cache.rebuild_distance = 0.2 * nearest[nearest.size() / 2];
+    }
+    ++cache.rebuilds;
+    return 0.0;
+}
+
 template <int D>
 void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
-                       const PolygonVisitor& visit) {
+                       const PolygonVisitor& visit, RvdCache& cache) {
     using Vec = Eigen::Matrix<double, D, 1>;
     using Map = Eigen::Map<const Vec>;
     const long ns = static_cast<long>(sites.rows());
@@ -123,13 +151,12 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     const KdTree tree(positions);
     auto lifted_d2 = [&](long a, const double* b) { return (Map(sites.row(a).data()) - Map(b)).squaredNorm(); };
 
-    // Nearest neighbours of every site, computed once per diagram; rarely, a cell needs more.
-    const int k_cached = static_cast<int>(std::min<long>(ns, 16));
-    std::vector<int32_t> nn(static_cast<size_t>(ns) * k_cached);
-    std::vector<double> nn_d2(nn.size());
-#pragma omp parallel for num_threads(threads) schedule(static, 256)
-    for (long k = 0; k < ns; ++k)
-        tree.knn(positions.row(k).data(), k_cached, &nn[k * k_cached], &nn_d2[k * k_cached]);
+    // Nearest-neighbour lists, possibly from an earlier diagram (see RvdCache).
+    const double delta = refresh_neighbours(tree, positions, threads, cache);
+    const int k_cached = cache.k;
+    const int32_t* nn = cache.neighbours.data();
+    const double* nn_d2 = cache.distances2.data();
+    if (static_cast<long>(cache.seeds.size()) != nf) cache.seeds.assign(nf, -1);
 
 #pragma omp parallel num_threads(threads)
     {
@@ -138,9 +165,13 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         Polygon2* poly = &buffers[0];
         Polygon2* scratch = &buffers[1];
         std::vector<double> lifted; // the polygon handed to the visitor, size x D
-        std::vector<int32_t> visited, queue, more;
+        std::vector<int32_t> queue, more;
         std::vector<double> more_d2;
         std::vector<int32_t> candidates;
+        // Per-site scratch valid while stamp[site] == current triangle: planar coordinates,
+        // computed once per triangle, and whether the site was queued already.
+        std::vector<long> planar_stamp(ns, -1), visited_stamp(ns, -1);
+        std::vector<PlanarSite> planar_of(ns);
 #pragma omp for schedule(static, 16)
         for (long p = 0; p < nf; ++p) {
             if (!surface.valid[p]) continue;
@@ -149,25 +180,48 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
             const Vec x2 = Map(surface.points.row(surface.triangles(p, 2)).data());
             const Vec u1 = Map(surface.u1.row(p).data()), u2 = Map(surface.u2.row(p).data());
             const Eigen::Vector2d c0(0.0, 0.0), c1((x1 - x0).dot(u1), 0.0), c2((x2 - x0).dot(u1), (x2 - x0).dot(u2));
-            auto planar = [&](long s) {
-                const Vec w = Map(sites.row(s).data()) - x0;
-                return PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
-            };
-            // Seed: the site nearest to the centroid in R^d, which owns it. It is within the
-            // lifted distance rho of the 3D-nearest site, so a 3D ball of radius rho holds it.
-            const Vec centroid = (x0 + x1 + x2) / 3.0;
-            int32_t first = tree.nearest(centroid.data());
-            double best = lifted_d2(first, centroid.data());
-            candidates.clear();
-            tree.within(centroid.data(), std::sqrt(best), candidates);
-            for (int32_t c : candidates)
-                if (const double d2 = lifted_d2(c, centroid.data()); d2 < best || (d2 == best && c < first)) {
-                    best = d2;
-                    first = c;
+            auto planar = [&](long s) -> const PlanarSite& {
+                if (planar_stamp[s] != p) {
+                    const Vec w = Map(sites.row(s).data()) - x0;
+                    planar_of[s] = PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
+                    planar_stamp[s] = p;
                 }
-            visited.assign(1, first);
-            queue.assign(1, first);
-            while (!queue.empty()) {
+                return planar_of[s];
+            };
+            auto enqueue = [&](int32_t s) {
+                if (visited_stamp[s] == p) return false;
+                visited_stamp[s] = p;
+                queue.push_back(s);
+                return true;
+            };
+            // Seed: any site whose cell meets the triangle; propagation finds the others. The
+            // one that met it last time usually still does; otherwise the site nearest to the
+            // centroid in R^d, which owns it: it lies within the lifted distance rho of the
+            // 3D-nearest site, so a 3D ball of radius rho holds it.
+            const Vec centroid = (x0 + x1 + x2) / 3.0;
+            auto exact_seed = [&]() {
+                int32_t first = tree.nearest(centroid.data());
+                double best = lifted_d2(first, centroid.data());
+                candidates.clear();
+                tree.within(centroid.data(), std::sqrt(best), candidates);
+                for (int32_t c : candidates)
+                    if (const double d2 = lifted_d2(c, centroid.data()); d2 < best || (d2 == best && c < first)) {
+                        best = d2;
+                        first = c;
+                    }
+                return first;
+            };
+            const int32_t remembered = cache.seeds[p];
+            bool seed_is_exact = remembered < 0 || remembered >= ns;
+            const int32_t first = seed_is_exact ? exact_seed() : remembered;
+            bool any_polygon = false;
+            queue.clear();
+            enqueue(first);
+            while (!queue.empty() || (!any_polygon && !seed_is_exact)) {
+                if (queue.empty()) { // the remembered seed no longer meets the triangle
+                    seed_is_exact = true;
+                    if (!enqueue(exact_seed())) break;
+                }
                 const int32_t k = queue.back();
                 queue.pop_back();
                 const PlanarSite vk = planar(k);
@@ -179,10 +233,12 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
                 const int32_t* list = &nn[k * k_cached];
                 const double* list_d2 = &nn_d2[k * k_cached];
+                double slack = delta; // the list's distances are from positions up to delta away
                 int count = k_cached;
                 bool empty = false;
+                const Eigen::Vector3d pk = positions.row(k).transpose();
                 for (int j = 0;; ++j) {
-                    if (j == count) { // ran out of cached neighbours before the security radius
+                    if (j == count) { // ran out of listed neighbours before the security radius
                         if (count >= ns) break;
                         const int wanted = static_cast<int>(std::min<long>(ns, 2L * count));
                         more.resize(wanted);
@@ -190,18 +246,20 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         count = tree.knn(positions.row(k).data(), wanted, more.data(), more_d2.data());
                         list = more.data();
                         list_d2 = more_d2.data();
+                        slack = 0.0; // fresh distances
                         if (j >= count) break;
                     }
                     const int32_t l = list[j];
                     if (l == k) continue;
-                    if (list_d2[j] > 4.0 * r2) break; // security radius reached: no farther site can cut
-                    if (list_d2[j] == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) { // coincident sites: the lower index owns the cell
+                    // Every later entry, and every unlisted site, is at least sqrt(d0) - 2 slack away.
+                    const double lower = std::sqrt(list_d2[j]) - 2.0 * slack;
+                    if (lower > 0.0 && lower * lower > 4.0 * r2) break; // security radius reached
+                    const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
+                    if (d2 > 4.0 * r2) continue; // too far to cut this polygon
+                    if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) { // coincident sites: the lower index owns the cell
                         if (l < k) { // l owns this cell: propagate through it instead
                             empty = true;
-                            if (std::find(visited.begin(), visited.end(), l) == visited.end()) {
-                                visited.push_back(l);
-                                queue.push_back(l);
-                            }
+                            enqueue(l);
                             break;
                         }
                         continue;
@@ -213,6 +271,8 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     r2 = max_squared_distance(*poly, vk.ab, off_plane2);
                 }
                 if (empty) continue;
+                if (!any_polygon) cache.seeds[p] = k;
+                any_polygon = true;
                 lifted.resize(static_cast<size_t>(poly->n) * D);
                 for (int i = 0; i < poly->n; ++i)
                     Eigen::Map<Vec>(lifted.data() + static_cast<size_t>(i) * D) = x0 + poly->v[i].x() * u1 + poly->v[i].y() * u2;
@@ -224,11 +284,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 out.edges = poly->e;
                 visit(thread, out);
                 for (int i = 0; i < poly->n; ++i)
-                    if (const int32_t id = poly->e[i];
-                        id >= 0 && std::find(visited.begin(), visited.end(), id) == visited.end()) {
-                        visited.push_back(id);
-                        queue.push_back(id);
-                    }
+                    if (poly->e[i] >= 0) enqueue(poly->e[i]);
             }
         }
     }
@@ -236,16 +292,19 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
 
 } // namespace
 
-void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit) {
+void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit,
+                 RvdCache* cache) {
     if (sites.cols() != surface.dimension())
         throw InvalidInput("sites have " + std::to_string(sites.cols()) + " coordinates, the surface " +
                            std::to_string(surface.dimension()));
     if (!sites.allFinite()) throw NumericalFailure("a site has a non-finite coordinate");
     const int n = resolve_threads(threads);
+    RvdCache local;
+    RvdCache& c = cache ? *cache : local;
     if (surface.dimension() == 3)
-        compute_rvd_fixed<3>(surface, sites, n, visit);
+        compute_rvd_fixed<3>(surface, sites, n, visit, c);
     else
-        compute_rvd_fixed<6>(surface, sites, n, visit);
+        compute_rvd_fixed<6>(surface, sites, n, visit, c);
 }
 
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads) {

@@ -52,10 +52,28 @@ using PolygonVisitor = std::function<void(int thread, const RvdPolygon& polygon)
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
+//! What one diagram can hand to the next when the sites move little between them (the
+//! optimiser's iterates): nearest-neighbour lists and, per triangle, a site whose cell met it.
+//! If no site moved more than delta since the lists were made, a listed neighbour is now at
+//! least d0 - 2 delta away and an unlisted one at least d0(last) - 2 delta, so the security
+//! radius test stays exact with stale lists; they are rebuilt once delta grows past a fifth
+//! of the typical spacing. Optional: the diagram is the same with or without it (up to rounding).
+struct RvdCache {
+    LiftedPoints anchor;             //!< #S by 3 site positions the lists were made at
+    std::vector<int32_t> neighbours; //!< #S by k, nearest first at `anchor` (3D distances)
+    std::vector<double> distances2;  //!< #S by k squared distances at `anchor`
+    int k = 0;
+    double rebuild_distance = 0.0;   //!< rebuild once a site moved farther than this
+    std::vector<int32_t> seeds;      //!< #F a site whose cell met the triangle last time, or -1
+    long rebuilds = 0;               //!< how many times the lists were made (for benchmarks)
+};
+
 //! Computes the diagram of `sites` (#S by d, d = surface.dimension()) and visits its polygons.
 //! Visits happen concurrently from several threads (one triangle's polygons on one thread, in a
 //! fixed order for a given thread count): the visitor must write only per-thread state.
-void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit);
+//! `cache` (may be null) carries neighbour lists from one call to the next, see RvdCache.
+void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit,
+                 RvdCache* cache = nullptr);
 
 //! #S areas |Omega_{k|S}| of the restricted cells; they add up to lifted_area(surface).
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0);
