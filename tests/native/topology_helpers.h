@@ -1,0 +1,133 @@
+// Topology facts of a triangle mesh, computed here from scratch (directed edge counts and vertex
+// fans) so that the repair and hole-filling tests do not check the code with itself.
+#pragma once
+
+#include "liftremesh/geometry.h"
+#include "liftremesh/mesh.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <numeric>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace liftremesh::test {
+
+struct Topology {
+    long boundary_edges = 0;       //!< undirected edges used by one triangle
+    long nonmanifold_edges = 0;    //!< undirected edges used by 3+ triangles
+    long misoriented_edges = 0;    //!< edges whose two triangles run the same direction
+    long nonmanifold_vertices = 0; //!< vertices whose triangles form 2+ edge-connected fans
+    long degenerate = 0;           //!< triangles with a repeated vertex index
+    long duplicates = 0;           //!< triangles with the vertex set of an earlier one
+    int chi = 0;                   //!< V - E + F over referenced vertices
+
+    //! Every edge used exactly once in each direction, every vertex one fan.
+    bool closed_oriented_manifold() const {
+        return boundary_edges == 0 && oriented_manifold();
+    }
+    //! Every edge used at most once in each direction (boundary allowed), every vertex one fan.
+    bool oriented_manifold() const {
+        return nonmanifold_edges == 0 && misoriented_edges == 0 && nonmanifold_vertices == 0 && degenerate == 0 &&
+               duplicates == 0;
+    }
+};
+
+inline Topology topology(const Mesh& mesh) {
+    Topology t;
+    const auto& T = mesh.triangles;
+    std::map<std::pair<int32_t, int32_t>, int> directed;
+    std::set<std::array<int32_t, 3>> sets;
+    for (Eigen::Index f = 0; f < T.rows(); ++f) {
+        std::array<int32_t, 3> key = {T(f, 0), T(f, 1), T(f, 2)};
+        if (key[0] == key[1] || key[1] == key[2] || key[2] == key[0]) ++t.degenerate;
+        std::sort(key.begin(), key.end());
+        if (!sets.insert(key).second) ++t.duplicates;
+        for (int j = 0; j < 3; ++j) ++directed[{T(f, j), T(f, (j + 1) % 3)}];
+    }
+    std::set<std::pair<int32_t, int32_t>> undirected;
+    for (const auto& [e, n] : directed) undirected.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
+    for (const auto& [a, b] : undirected) {
+        const auto ab = directed.count({a, b}) ? directed.at({a, b}) : 0;
+        const auto ba = directed.count({b, a}) ? directed.at({b, a}) : 0;
+        if (ab + ba == 1) ++t.boundary_edges;
+        if (ab + ba > 2) ++t.nonmanifold_edges;
+        if (ab + ba == 2 && (ab == 2 || ba == 2)) ++t.misoriented_edges;
+    }
+    // Fans: triangles around v joined when they share an edge (v, w).
+    std::vector<std::vector<Eigen::Index>> around(static_cast<size_t>(mesh.points.rows()));
+    for (Eigen::Index f = 0; f < T.rows(); ++f)
+        for (int j = 0; j < 3; ++j) around[T(f, j)].push_back(f);
+    long referenced = 0;
+    for (size_t v = 0; v < around.size(); ++v) {
+        const auto& fs = around[v];
+        if (fs.empty()) continue;
+        ++referenced;
+        std::vector<size_t> parent(fs.size());
+        std::iota(parent.begin(), parent.end(), 0);
+        auto find = [&](size_t i) {
+            while (parent[i] != i) i = parent[i];
+            return i;
+        };
+        std::map<int32_t, size_t> seen;
+        for (size_t i = 0; i < fs.size(); ++i)
+            for (int j = 0; j < 3; ++j) {
+                const int32_t w = T(fs[i], j);
+                if (w == static_cast<int32_t>(v)) continue;
+                auto it = seen.find(w);
+                if (it == seen.end())
+                    seen[w] = i;
+                else
+                    parent[find(i)] = find(it->second);
+            }
+        std::set<size_t> roots;
+        for (size_t i = 0; i < fs.size(); ++i) roots.insert(find(i));
+        if (roots.size() > 1) ++t.nonmanifold_vertices;
+    }
+    t.chi = static_cast<int>(referenced - static_cast<long>(undirected.size()) + T.rows());
+    return t;
+}
+
+inline Eigen::Vector3d corner(const Mesh& m, Eigen::Index f, int j) { return m.points.row(m.triangles(f, j)).transpose(); }
+
+//! Smallest kappa (Eq. 26) of triangles [first, #F).
+inline double min_kappa(const Mesh& m, Eigen::Index first = 0) {
+    double k = 1.0;
+    for (Eigen::Index f = first; f < m.triangles.rows(); ++f)
+        k = std::min(k, triangle_kappa(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2)));
+    return k;
+}
+
+//! Number of triangles [first, #F) whose normal points towards `center` (inward on a sphere).
+inline long facing_inward(const Mesh& m, const Eigen::Vector3d& center, Eigen::Index first = 0) {
+    long n = 0;
+    for (Eigen::Index f = first; f < m.triangles.rows(); ++f) {
+        const Eigen::Vector3d a = corner(m, f, 0), b = corner(m, f, 1), c = corner(m, f, 2);
+        if ((b - a).cross(c - a).dot((a + b + c) / 3.0 - center) <= 0.0) ++n;
+    }
+    return n;
+}
+
+//! `mesh` without the triangles whose index is in `drop`.
+inline Mesh without_triangles(const Mesh& mesh, const std::set<Eigen::Index>& drop) {
+    Mesh out;
+    out.points = mesh.points;
+    out.triangles.resize(mesh.triangles.rows() - static_cast<Eigen::Index>(drop.size()), 3);
+    Eigen::Index row = 0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        if (!drop.count(f)) out.triangles.row(row++) = mesh.triangles.row(f);
+    return out;
+}
+
+//! Indices of the triangles using vertex v.
+inline std::set<Eigen::Index> triangles_at(const Mesh& mesh, int32_t v) {
+    std::set<Eigen::Index> out;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (mesh.triangles(f, j) == v) out.insert(f);
+    return out;
+}
+
+} // namespace liftremesh::test
