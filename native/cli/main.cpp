@@ -1,2 +1,78 @@
+// liftremesh: the command-line remesher. Reads a mesh, remeshes it, writes it and a report.
+#include "cli_options.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh_io.h"
+#include "liftremesh/pipeline.h"
+#include "liftremesh/report.h"
+
 #include <cstdio>
-int main() { std::fputs("liftremesh: the pipeline is not built yet\n", stderr); return 2; }
+#include <fstream>
+#include <iostream>
+
+using namespace liftremesh;
+
+namespace {
+
+// One line on stderr for every error, whatever it is.
+int fail(const std::string& message, int code) {
+    std::string line = message;
+    for (char& c : line)
+        if (c == '\n' || c == '\r') c = ' ';
+    std::cerr << "liftremesh: error: " << line << "\n";
+    return code;
+}
+
+bool print_progress(const Progress& p) {
+    if (p.stage == "optimize" && p.total > 0) {
+        if (p.iteration % 10 == 0 || p.iteration == p.total)
+            std::fprintf(stderr, "  optimize %3d/%d  energy %.6g  |grad| %.3g\n", p.iteration, p.total, p.energy,
+                         p.gradient_norm);
+    } else if (p.total == 0) {
+        std::fprintf(stderr, "liftremesh: %s\n", p.stage.c_str());
+    }
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    cli::CliOptions options;
+    try {
+        options = cli::parse_options(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const std::exception& e) {
+        return fail(e.what(), 2);
+    }
+    if (options.help) {
+        std::cout << cli::usage();
+        return 0;
+    }
+    try {
+        check_mesh_extension(options.output); // refuse a bad output name before the work
+        const Mesh input = read_mesh(options.input);
+        const RemeshResult result =
+            remesh(input, options.params, options.quiet ? ProgressCallback() : ProgressCallback(print_progress));
+        write_mesh(options.output, result.mesh);
+        if (!options.report_path.empty()) {
+            std::ofstream out(options.report_path);
+            out << to_json(result.report) << "\n";
+            if (!out) return fail("cannot write the report '" + options.report_path + "'", 2);
+        }
+        if (!options.quiet) {
+            const MeshQuality& q = result.report.output;
+            std::fprintf(stderr,
+                         "liftremesh: wrote %s: %ld vertices, %ld triangles, kappa min %.3f mean %.3f, "
+                         "min angle %.1f deg, Hausdorff %.2e of the diagonal, chi %d (input %d)\n",
+                         options.output.c_str(), q.vertices, q.triangles, q.kappa_min, q.kappa_mean, q.min_angle_deg,
+                         result.report.hausdorff_relative, q.euler_characteristic,
+                         result.report.input.euler_characteristic);
+        }
+        return 0;
+    } catch (const InvalidInput& e) {
+        return fail(e.what(), 2);
+    } catch (const std::bad_alloc&) {
+        return fail("out of memory", 1);
+    } catch (const std::exception& e) {
+        return fail(e.what(), 1);
+    }
+}

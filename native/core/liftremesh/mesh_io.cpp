@@ -514,6 +514,8 @@ Mesh read_mesh(const std::string& path) {
     return mesh;
 }
 
+void check_mesh_extension(const std::string& path) { format_of(path); }
+
 void write_mesh(const std::string& path, const Mesh& mesh) {
     const Format format = format_of(path);
     check_indices(mesh);

@@ -29,6 +29,10 @@ Mesh read_mesh(const std::string& path);
 //! trip); binary STL stores float32 coordinates and recomputed unit normals.
 void write_mesh(const std::string& path, const Mesh& mesh);
 
+//! Throws InvalidInput, as read_mesh and write_mesh would, if `path` has no supported extension.
+//! Lets a caller refuse a bad output name before any work is done.
+void check_mesh_extension(const std::string& path);
+
 //! Welds vertices with exactly equal coordinates and drops triangles that become degenerate
 //! (a repeated index). Used by read_mesh; exposed for meshes that arrive as arrays.
 //! Coordinates are compared as doubles (-0.0 equals 0.0; identical NaN bit patterns are merged);

@@ -1,0 +1,114 @@
+// The liftremesh command-line tool, run as a user would: exit codes, one-line errors, outputs.
+#include "liftremesh/mesh_io.h"
+#include "liftremesh/params.h"
+#include "helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace liftremesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int exit_code;
+    std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+protected:
+    fs::path dir;
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("liftremesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    static std::string slurp(const fs::path& p) {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    CliRun run(const std::string& args) const {
+        const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+        const std::string command = std::string(LIFTREMESH_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+        const int status = std::system(command.c_str());
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    }
+    std::string sphere_off() const {
+        const fs::path p = dir / "sphere.off";
+        write_mesh(p.string(), test::make_icosphere(2));
+        return p.string();
+    }
+    static long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+};
+
+} // namespace
+
+TEST_F(Cli, RemeshesAndWritesAReport) {
+    const std::string in = sphere_off(), out = (dir / "out.obj").string(), report = (dir / "r.json").string();
+    const CliRun r = run(in + " " + out + " --vertices 300 --iterations 30 --report " + report + " --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << "--quiet printed: " << r.err;
+    const Mesh m = read_mesh(out);
+    EXPECT_EQ(euler_characteristic(m), 2);
+    const std::string json = slurp(report);
+    for (const char* key : {"\"kappa_min\"", "\"kappa_mean\"", "\"kappa_histogram\"", "\"min_angle_deg\"",
+                            "\"hausdorff_relative\"", "\"boundary_edges\"", "\"nonmanifold_edges\"",
+                            "\"euler_characteristic\"", "\"timings\"", "\"optimize\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+TEST_F(Cli, ProgressGoesToStderr) {
+    const CliRun r = run(sphere_off() + " " + (dir / "o.stl").string() + " --vertices 200 --iterations 20");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_NE(r.err.find("optimize"), std::string::npos);
+}
+
+TEST_F(Cli, HelpDocumentsEveryOptionWithItsDefault) {
+    const CliRun r = run("--help");
+    EXPECT_EQ(r.exit_code, 0);
+    for (const ParameterInfo& p : parameter_table()) {
+        std::string flag = "--" + p.name;
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+        EXPECT_NE(r.out.find("[" + p.default_text + "]"), std::string::npos) << p.name;
+    }
+    for (const char* flag : {"--report", "--quiet", "--help"}) EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
+    const std::string in = sphere_off(), out = (dir / "o.stl").string();
+    const fs::path garbage = dir / "garbage.stl";
+    std::ofstream(garbage) << "this is not\na mesh at all\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {(dir / "missing.stl").string() + " " + out, "missing.stl"},
+        {garbage.string() + " " + out, "garbage.stl"},
+        {in + " " + (dir / "o.ply").string(), ".ply"},
+        {in + " " + out + " --frobnicate 3", "--frobnicate"},
+        {in + " " + out + " --vertices many", "--vertices"},
+        {in + " " + out + " --sigma 0.5", "sigma"},
+        {in + " " + out + " --mode sideways", "sideways"},
+        {in + " " + out + " --vertices 100 --edge-length 0.1", "--edge-length"},
+        {in + " " + out + " --eta -1", "eta"},
+        {in, "input and an output"},
+    };
+    for (const auto& [args, named] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+        EXPECT_EQ(lines(r.err), 1) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find(named), std::string::npos) << args << "\n" << r.err;
+    }
+    EXPECT_FALSE(fs::exists(out)); // nothing is written when the run fails
+}
