@@ -15,6 +15,7 @@
 #include "liftremesh/sampling.h"
 
 #include <chrono>
+#include <sstream>
 #include <cmath>
 
 namespace liftremesh {
@@ -80,10 +81,12 @@ long target_site_count(const RemeshParams& params, double area) {
     // An equilateral mesh of edge h has about 2 triangles per vertex: area sqrt(3)/2 h^2 per vertex.
     const double h = params.target_edge_length;
     const double n = std::round(area / (std::sqrt(3.0) / 2.0 * h * h));
-    if (!(n >= 4.0) || n > static_cast<double>(kMaxSites))
-        throw InvalidInput("edge_length = " + std::to_string(h) + " gives " + std::to_string(n) +
-                           " vertices on this surface of area " + std::to_string(area) + ": expected 4 to " +
-                           std::to_string(kMaxSites));
+    if (!(n >= 4.0) || n > static_cast<double>(kMaxSites)) {
+        std::ostringstream message;
+        message << "edge_length = " << h << " gives " << n << " vertices on this surface of area " << area
+                << ": expected an edge length giving 4 to " << kMaxSites << " vertices";
+        throw InvalidInput(message.str());
+    }
     return static_cast<long>(n);
 }
 
