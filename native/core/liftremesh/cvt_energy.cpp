@@ -23,54 +23,59 @@ struct ObjectiveAccumulator {
     ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig, int threads)
         : surface(s), sites(v), sigma(sig), value(threads, 0.0), grad(threads, LiftedPoints::Zero(v.rows(), D)) {}
 
-    // Pi_p y: the component of y normal to triangle p (Eq. 13, 14).
-    Vec normal_part(long p, const Vec& y) const {
-        const Map u1(surface.u1.row(p).data()), u2(surface.u2.row(p).data());
-        return y - u1 * u1.dot(y) - u2 * u2.dot(y);
-    }
-    Vec tangent_part(long p, const Vec& y) const {
-        const Map u1(surface.u1.row(p).data()), u2(surface.u2.row(p).data());
-        return u1 * u1.dot(y) + u2 * u2.dot(y);
-    }
-
+    // Every polygon lies in the plane of its triangle p and arrives in p's orthonormal frame
+    // (x = x0 + a u1 + b u2), so the integrals are 2D ones: with w_k = v_k - x0 split into its
+    // in-plane part s_k and its part normal to the plane (length^2 o_k), |x - v_k|^2 =
+    // |(a, b) - s_k|^2 + o_k, and Pi_p (x - v_k) = -(normal part of w_k) for every x (Eq. 13).
     void operator()(int thread, const RvdPolygon& poly) {
         const long k = poly.site, p = poly.triangle;
         const double w = surface.weights[p]; // rho_p^delta, Eq. 25
-        const Vec vk = Map(sites.row(k).data());
-        auto vertex = [&](int i) { return Map(poly.vertices + static_cast<long>(i) * D); };
+        const Map x0(surface.points.row(surface.triangles(p, 0)).data());
+        const Map u1(surface.u1.row(p).data()), u2(surface.u2.row(p).data());
+        const Vec wk = Map(sites.row(k).data()) - x0;
+        const Eigen::Vector2d sk = poly.site_planar.ab;
+        const double ok = poly.site_planar.off_plane2();
+        auto vertex = [&](int i) { return Eigen::Map<const Eigen::Vector2d>(poly.planar + 2 * i); };
 
-        // Inner part, as if no feature sensitivity (Algorithm 2, lines 3-7).
+        // Inner part, as if no feature sensitivity (Algorithm 2, lines 3-7), on a fan of the polygon.
         double area = 0.0, f = 0.0;
-        Vec moment = Vec::Zero();
-        const Vec w1 = vertex(0) - vk;
+        Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+        const Eigen::Vector2d w1 = vertex(0) - sk;
         for (int i = 1; i + 1 < poly.size; ++i) {
-            const Vec w2 = vertex(i) - vk, w3 = vertex(i + 1) - vk;
-            const double a = triangle_area(w1, w2, w3);
+            const Eigen::Vector2d w2 = vertex(i) - sk, w3 = vertex(i + 1) - sk;
+            const Eigen::Vector2d e2 = w2 - w1, e3 = w3 - w1;
+            const double a = 0.5 * std::abs(e2.x() * e3.y() - e2.y() * e3.x());
             // Eq. 6: int_T |x - v|^2 = |T|/6 (sum over the 6 unordered pairs (i <= j) of w_i . w_j)
             f += a / 6.0 * (w1.squaredNorm() + w2.squaredNorm() + w3.squaredNorm() + w1.dot(w2) + w2.dot(w3) + w1.dot(w3));
             area += a;
             moment += a * (vertex(0) + vertex(i) + vertex(i + 1)) / 3.0;
         }
-        Vec g = 2.0 * (area * vk - moment); // Eq. 7
+        f += area * ok; // the part of |x - v_k|^2 normal to the plane, constant over it
+        // Eq. 7: 2 (|Omega| v_k - int x) = 2 (|Omega| w_k - (moment.x u1 + moment.y u2)).
+        Vec g = 2.0 * (area * wk - moment.x() * u1 - moment.y() * u2);
 
         if (sigma > 1.0) { // feature sensitivity (lines 8-18)
             const double s2 = sigma * sigma - 1.0;
-            const Vec wk = normal_part(p, vertex(0) - vk); // constant over the triangle
-            const double wk2 = wk.squaredNorm();
-            f += s2 * area * wk2;  // Eq. 11: the normal component, weighted by sigma^2 - 1
-            g -= 2.0 * s2 * area * wk; // Eq. 17
+            const Vec normal_k = wk - sk.x() * u1 - sk.y() * u2; // Pi_p w_k = -Pi_p (x - v_k)
+            f += s2 * area * ok;              // Eq. 11: the normal component, weighted by sigma^2 - 1
+            g += 2.0 * s2 * area * normal_k;  // Eq. 17: d/dv of s2 |Omega| |Pi (x - v)|^2
+            // Eq. 20 on each bisector edge e = (c1, c2) with site l:
+            //   (sigma^2 - 1) |e| (|Pi(c - v_k)|^2 - |Pi(c - v_l)|^2) / (n . (v_l - v_k)) (mid(e) - v_k),
+            // where n . (v_l - v_k) = |s_l - s_k| (the bisector's in-plane normal is along s_l - s_k).
+            // Summed as (sum coef mid) - (sum coef) w_k in the frame.
+            double coef_sum = 0.0;
+            Eigen::Vector2d coef_mid = Eigen::Vector2d::Zero();
             for (int i = 0; i < poly.size; ++i) {
-                const int32_t l = poly.edges[i];
-                if (l < 0) continue; // a piece of the triangle's edge: no boundary term
-                const Vec vl = Map(sites.row(l).data());
-                const Vec c1 = vertex(i), c2 = vertex((i + 1) % poly.size);
-                // n_{k,l,p} . (v_l - v_k) = |tangential part of v_l - v_k|: the bisector's in-plane normal.
-                const double denom = tangent_part(p, vl - vk).norm();
+                if (poly.edges[i] < 0) continue; // a piece of the triangle's edge: no boundary term
+                const PlanarSite& sl = poly.edge_sites[i];
+                const double denom = (sl.ab - sk).norm();
                 if (!(denom > 0.0)) continue;
-                const double wl2 = normal_part(p, c1 - vl).squaredNorm();
-                const double len = (c2 - c1).norm();
-                g += (s2 * len * (wk2 - wl2) / denom) * (0.5 * (c1 + c2) - vk); // Eq. 20
+                const Eigen::Vector2d c1 = vertex(i), c2 = vertex(i + 1 == poly.size ? 0 : i + 1);
+                const double coef = s2 * (c2 - c1).norm() * (ok - sl.off_plane2()) / denom;
+                coef_sum += coef;
+                coef_mid += coef * 0.5 * (c1 + c2);
             }
+            g += coef_mid.x() * u1 + coef_mid.y() * u2 - coef_sum * wk;
         }
         value[thread] += w * f;
         grad[thread].row(k) += w * g.transpose();

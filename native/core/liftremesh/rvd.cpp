@@ -47,6 +47,16 @@ double lifted_area(const LiftedSurface& s) {
     return total;
 }
 
+double polygon_area(const RvdPolygon& poly) {
+    const double* c = poly.planar;
+    double twice = 0.0; // shoelace; the polygon runs in the triangle's (counter-clockwise) order
+    for (int i = 0; i < poly.size; ++i) {
+        const int j = i + 1 == poly.size ? 0 : i + 1;
+        twice += c[2 * i] * c[2 * j + 1] - c[2 * j] * c[2 * i + 1];
+    }
+    return 0.5 * std::abs(twice);
+}
+
 int resolve_threads(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
 namespace {
@@ -65,12 +75,6 @@ struct Polygon2 {
         e[n++] = id;
     }
     bool full() const { return n + 1 >= kCapacity; }
-};
-
-// A site seen from the plane of one triangle: its in-plane coordinates (a, b) and |v - x0|^2.
-struct PlanarSite {
-    Eigen::Vector2d ab;
-    double norm2;
 };
 
 // Clips `in` to the points of the plane nearer to site k than to site l. With w = v - x0 and
@@ -164,7 +168,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         auto buffers = std::make_unique<Polygon2[]>(2); // swapped by pointer after each clip
         Polygon2* poly = &buffers[0];
         Polygon2* scratch = &buffers[1];
-        std::vector<double> lifted; // the polygon handed to the visitor, size x D
+        std::vector<PlanarSite> edge_sites(Polygon2::kCapacity);
         std::vector<int32_t> queue, more;
         std::vector<double> more_d2;
         std::vector<int32_t> candidates;
@@ -225,7 +229,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 const int32_t k = queue.back();
                 queue.pop_back();
                 const PlanarSite vk = planar(k);
-                const double off_plane2 = std::max(0.0, vk.norm2 - vk.ab.squaredNorm());
+                const double off_plane2 = vk.off_plane2();
                 poly->n = 0;
                 poly->push(c0, -1);
                 poly->push(c1, -2);
@@ -273,15 +277,16 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 if (empty) continue;
                 if (!any_polygon) cache.seeds[p] = k;
                 any_polygon = true;
-                lifted.resize(static_cast<size_t>(poly->n) * D);
-                for (int i = 0; i < poly->n; ++i)
-                    Eigen::Map<Vec>(lifted.data() + static_cast<size_t>(i) * D) = x0 + poly->v[i].x() * u1 + poly->v[i].y() * u2;
                 RvdPolygon out;
                 out.site = k;
                 out.triangle = static_cast<int32_t>(p);
                 out.size = poly->n;
-                out.vertices = lifted.data();
+                out.planar = poly->v[0].data(); // Vector2d has no padding: size x 2 doubles
                 out.edges = poly->e;
+                out.site_planar = vk;
+                for (int i = 0; i < poly->n; ++i)
+                    if (poly->e[i] >= 0) edge_sites[i] = planar(poly->e[i]);
+                out.edge_sites = edge_sites.data();
                 visit(thread, out);
                 for (int i = 0; i < poly->n; ++i)
                     if (poly->e[i] >= 0) enqueue(poly->e[i]);
@@ -309,14 +314,9 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
 
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads) {
     const int n = resolve_threads(threads);
-    const int d = surface.dimension();
     std::vector<Eigen::VectorXd> per_thread(n, Eigen::VectorXd::Zero(sites.rows()));
     compute_rvd(surface, sites, n, [&](int thread, const RvdPolygon& poly) {
-        using Row = Eigen::Map<const Eigen::VectorXd>;
-        const Row c0(poly.vertices, d);
-        for (int i = 1; i + 1 < poly.size; ++i)
-            per_thread[thread][poly.site] +=
-                triangle_area(c0, Row(poly.vertices + i * d, d), Row(poly.vertices + (i + 1) * d, d));
+        per_thread[thread][poly.site] += polygon_area(poly);
     });
     Eigen::VectorXd total = Eigen::VectorXd::Zero(sites.rows());
     for (const auto& a : per_thread) total += a;

@@ -14,6 +14,7 @@
 
 #include "liftremesh/mesh.h"
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -35,15 +36,29 @@ LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eige
 //! Total area of the valid triangles of the (lifted) surface.
 double lifted_area(const LiftedSurface& surface);
 
-//! One polygon Omega_{k|T_p} of the diagram, valid only during the visitor call.
+//! A site seen from the plane of triangle T_p, with w = v - x0 (x0 the triangle's first vertex):
+//! its in-plane coordinates ab = (w . u1, w . u2) and |w|^2. Its squared distance to the plane
+//! is |w|^2 - |ab|^2.
+struct PlanarSite {
+    Eigen::Vector2d ab;
+    double norm2 = 0.0;
+    double off_plane2() const { return std::max(0.0, norm2 - ab.squaredNorm()); }
+};
+
+//! One polygon Omega_{k|T_p} of the diagram, valid only during the visitor call. It lies in the
+//! plane of T_p and is given in that triangle's frame: vertex i is
+//! x0 + planar[2i] u1 + planar[2i+1] u2, with x0 the triangle's first vertex and (u1, u2) its
+//! tangent basis (Eq. 15, surface.u1/u2).
 struct RvdPolygon {
     int32_t site = -1;               //!< k
     int32_t triangle = -1;           //!< p
     int size = 0;                    //!< number of vertices (>= 3), in the triangle's orientation
-    const double* vertices = nullptr; //!< size by d, row-major
+    const double* planar = nullptr;  //!< size by 2 vertex coordinates in the triangle's frame
     //! edges[i] is the line carrying the edge from vertex i to vertex i+1: a site l >= 0 for the
     //! bisector of k and l, or -1 - j for edge j of the triangle (from its vertex j to j+1).
     const int32_t* edges = nullptr;
+    PlanarSite site_planar;              //!< site k in the triangle's frame
+    const PlanarSite* edge_sites = nullptr; //!< per edge, site l in the frame (bisector edges only)
 };
 
 //! Called for every non-empty polygon; `thread` in [0, resolve_threads(threads)).
@@ -74,6 +89,9 @@ struct RvdCache {
 //! `cache` (may be null) carries neighbour lists from one call to the next, see RvdCache.
 void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit,
                  RvdCache* cache = nullptr);
+
+//! Area of a polygon of the diagram (in R^d: the frame is orthonormal).
+double polygon_area(const RvdPolygon& polygon);
 
 //! #S areas |Omega_{k|S}| of the restricted cells; they add up to lifted_area(surface).
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0);
