@@ -10,27 +10,6 @@
 
 using namespace liftremesh;
 
-namespace {
-
-LiftedPoints random_sites(const LiftedSurface& s, int n, double noise, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_int_distribution<long> pick(0, s.triangles.rows() - 1);
-    std::uniform_real_distribution<double> u01(0.0, 1.0);
-    std::normal_distribution<double> gauss(0.0, noise);
-    LiftedPoints v(n, s.dimension());
-    for (int k = 0; k < n; ++k) {
-        const long f = pick(rng);
-        double a = u01(rng), b = u01(rng);
-        if (a + b > 1) { a = 1 - a; b = 1 - b; }
-        v.row(k) = (1 - a - b) * s.points.row(s.triangles(f, 0)) + a * s.points.row(s.triangles(f, 1)) +
-                   b * s.points.row(s.triangles(f, 2));
-        for (int j = 0; j < s.dimension(); ++j) v(k, j) += gauss(rng);
-    }
-    return v;
-}
-
-} // namespace
-
 // (sigma, delta, nu): nu = 0 is d = 3, nu > 0 is d = 6.
 class Gradient : public ::testing::TestWithParam<std::tuple<double, double, double>> {};
 
@@ -41,7 +20,7 @@ TEST_P(Gradient, MatchesCentralFiniteDifferences) {
         const Points normals = vertex_normals(m, 0.05);
         const LiftedSurface s = make_lifted_surface(lift(m.points, normals, nu), m.triangles,
                                                     density_weights(triangle_density(m, normals, 0.05), delta));
-        const LiftedPoints v = random_sites(s, 80, 0.02, 11); // generic: off the surface, in general position
+        const LiftedPoints v = test::sites_near(s, 80, 0.02, 11); // generic: off the surface, in general position
         LiftedPoints grad;
         cvt_objective(s, v, sigma, 1, grad);
 

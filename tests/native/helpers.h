@@ -2,6 +2,7 @@
 #pragma once
 
 #include "liftremesh/mesh.h"
+#include "liftremesh/rvd.h"
 
 #include <Eigen/Geometry>
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -106,6 +108,28 @@ inline Mesh make_cube(double s, int n) {
                 }
         }
     return make_mesh(p, f);
+}
+
+//! n sites near a (lifted) surface: uniform points of random triangles, moved off it by Gaussian
+//! noise of standard deviation `noise` in every coordinate (generic positions for the tests).
+inline LiftedPoints sites_near(const LiftedSurface& s, int n, double noise, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<long> pick(0, s.triangles.rows() - 1);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    std::normal_distribution<double> gauss(0.0, noise);
+    LiftedPoints v(n, s.dimension());
+    for (int k = 0; k < n; ++k) {
+        const long f = pick(rng);
+        double a = u01(rng), b = u01(rng);
+        if (a + b > 1) {
+            a = 1 - a;
+            b = 1 - b;
+        }
+        v.row(k) = (1 - a - b) * s.points.row(s.triangles(f, 0)) + a * s.points.row(s.triangles(f, 1)) +
+                   b * s.points.row(s.triangles(f, 2));
+        for (int j = 0; j < s.dimension(); ++j) v(k, j) += gauss(rng);
+    }
+    return v;
 }
 
 //! Path of a mesh in ../shared/meshes, or "" (and the test is skipped) where it does not exist.

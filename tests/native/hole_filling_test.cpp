@@ -472,13 +472,7 @@ TEST(HoleFilling, RepairedRandomSoupsStayOrientedManifolds) {
     std::mt19937 rng(777);
     for (int trial = 0; trial < 40; ++trial) {
         const int nv = 10 + trial % 30, nf = 20 + 9 * trial;
-        std::uniform_real_distribution<double> coord(-1.0, 1.0);
-        std::uniform_int_distribution<int32_t> index(0, nv - 1);
-        Mesh m;
-        m.points.resize(nv, 3);
-        for (int i = 0; i < nv; ++i) m.points.row(i) << coord(rng), coord(rng), coord(rng);
-        m.triangles.resize(nf, 3);
-        for (int f = 0; f < nf; ++f) m.triangles.row(f) << index(rng), index(rng), index(rng);
+        Mesh m = random_soup(rng, nv, nf);
         make_manifold(m);
         const auto loops = boundary_loops(m);
         expect_loops_follow_convention(m, loops);

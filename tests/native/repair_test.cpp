@@ -255,13 +255,7 @@ TEST(Repair, RandomSoupsBecomeOrientedManifolds) {
     std::mt19937 rng(12345);
     for (int trial = 0; trial < 40; ++trial) {
         const int nv = 8 + trial % 25, nf = 10 + 7 * trial;
-        std::uniform_real_distribution<double> coord(-1.0, 1.0);
-        std::uniform_int_distribution<int32_t> index(0, nv - 1);
-        Mesh m;
-        m.points.resize(nv, 3);
-        for (int i = 0; i < nv; ++i) m.points.row(i) << coord(rng), coord(rng), coord(rng);
-        m.triangles.resize(nf, 3);
-        for (int f = 0; f < nf; ++f) m.triangles.row(f) << index(rng), index(rng), index(rng);
+        Mesh m = random_soup(rng, nv, nf);
         const RepairStats s = make_manifold(m);
         const Topology t = topology(m);
         EXPECT_TRUE(t.oriented_manifold()) << "trial " << trial << ": " << t.nonmanifold_edges << " nm edges, "

@@ -9,6 +9,7 @@
 #include <array>
 #include <map>
 #include <numeric>
+#include <random>
 #include <set>
 #include <utility>
 #include <vector>
@@ -108,6 +109,18 @@ inline long facing_inward(const Mesh& m, const Eigen::Vector3d& center, Eigen::I
         if ((b - a).cross(c - a).dot((a + b + c) / 3.0 - center) <= 0.0) ++n;
     }
     return n;
+}
+
+//! A triangle soup: nv random points in [-1, 1]^3, nf triangles of random indices (repeats allowed).
+inline Mesh random_soup(std::mt19937& rng, int nv, int nf) {
+    std::uniform_real_distribution<double> coord(-1.0, 1.0);
+    std::uniform_int_distribution<int32_t> index(0, nv - 1);
+    Mesh m;
+    m.points.resize(nv, 3);
+    for (int i = 0; i < nv; ++i) m.points.row(i) << coord(rng), coord(rng), coord(rng);
+    m.triangles.resize(nf, 3);
+    for (int f = 0; f < nf; ++f) m.triangles.row(f) << index(rng), index(rng), index(rng);
+    return m;
 }
 
 //! `mesh` without the triangles whose index is in `drop`.

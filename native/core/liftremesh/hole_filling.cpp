@@ -226,6 +226,27 @@ private:
 
     double kappa(int a, int b, int c) const { return triangle_kappa(p_[a], p_[b], p_[c]); }
 
+    // The ring vertex with the best non-negative ear score, or -1 if none is an ear.
+    static int best_ear(const Ring& ring, int any, const std::vector<double>& score) {
+        int best = -1;
+        for (int i = any, k = 0; k < ring.remaining; i = ring.next[i], ++k)
+            if (score[i] >= 0.0 && (best < 0 || score[i] > score[best])) best = i;
+        return best;
+    }
+
+    // Takes the ear at `best` off the ring: records its triangle and its new diagonal, and
+    // refreshes the scores of the two vertices beside it. Returns a vertex still on the ring.
+    template <class Refresh>
+    int take_ear(Ring& ring, int best, std::vector<Tri>& local, const Refresh& refresh) {
+        const int a = ring.prev[best], c = ring.next[best];
+        local.push_back({a, best, c});
+        created_.insert(edge_key(loop_[a], loop_[c]));
+        ring.clip(best);
+        refresh(a);
+        refresh(c);
+        return a;
+    }
+
     // Ear clipping of the simple counter-clockwise polygon q, each step taking the valid ear with
     // the best kappa (Eq. 26). Ear flags are refreshed beside the clipped vertex only: O(n^2).
     // A far vertex whose triangle held nothing but the clipped vertex keeps a stale "not an ear",
@@ -249,9 +270,7 @@ private:
         int any = 0, full_refreshes = 4;
         bool fresh = true; // every flag is up to date
         while (ring.remaining > 3) {
-            int best = -1;
-            for (int i = any, k = 0; k < ring.remaining; i = ring.next[i], ++k)
-                if (score[i] >= 0.0 && (best < 0 || score[i] > score[best])) best = i;
+            const int best = best_ear(ring, any, score);
             if (best < 0 && !fresh && full_refreshes-- > 0) {
                 for (int i = any, k = 0; k < ring.remaining; i = ring.next[i], ++k) refresh(i);
                 fresh = true;
@@ -261,13 +280,7 @@ private:
                 created_.clear();
                 return false;
             }
-            const int a = ring.prev[best], c = ring.next[best];
-            local.push_back({a, best, c});
-            created_.insert(edge_key(loop_[a], loop_[c]));
-            ring.clip(best);
-            any = a;
-            refresh(a);
-            refresh(c);
+            any = take_ear(ring, best, local, refresh);
             fresh = false;
         }
         local.push_back({ring.prev[any], any, ring.next[any]});
@@ -468,17 +481,9 @@ private:
         for (int i = 0; i < n; ++i) refresh(i);
         int any = 0;
         while (ring.remaining > 3) {
-            int best = -1;
-            for (int i = any, k = 0; k < ring.remaining; i = ring.next[i], ++k)
-                if (score[i] >= 0.0 && (best < 0 || score[i] > score[best])) best = i;
+            const int best = best_ear(ring, any, score);
             if (best < 0) return false;
-            const int a = ring.prev[best], c = ring.next[best];
-            local.push_back({a, best, c});
-            created_.insert(edge_key(loop_[a], loop_[c]));
-            ring.clip(best);
-            any = a;
-            refresh(a);
-            refresh(c);
+            any = take_ear(ring, best, local, refresh);
         }
         local.push_back({ring.prev[any], any, ring.next[any]});
         return true;
