@@ -11,6 +11,7 @@ namespace liftremesh {
 //! A triangle is drawn with probability proportional to |T_p| sqrt(w_p), w_p = rho_p^delta:
 //! the point density a CVT of weight w reaches in 2D, so the optimiser starts near its goal
 //! (with w = 1 this is the uniform sampling of the paper). The point is uniform inside it.
+//! Rows come sorted along a Morton curve (near in space, near in memory) for cache locality.
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed);
 
 } // namespace liftremesh
