@@ -119,7 +119,7 @@ double refresh_neighbours(const KdTree& tree, const LiftedPoints& positions, int
     double delta = std::numeric_limits<double>::infinity();
     if (cache.anchor.rows() == ns && cache.k > 0) delta = (positions - cache.anchor).rowwise().norm().maxCoeff();
     if (delta <= cache.rebuild_distance) return delta;
-    cache.k = static_cast<int>(std::min<long>(ns, 16));
+    cache.k = static_cast<int>(std::min<long>(ns, 24));
     cache.anchor = positions;
     cache.neighbours.resize(static_cast<size_t>(ns) * cache.k);
     cache.distances2.resize(cache.neighbours.size());
@@ -133,7 +133,7 @@ double refresh_neighbours(const KdTree& tree, const LiftedPoints& positions, int
         if (k > 1) nearest.push_back(std::sqrt(cache.distances2[s * k + 1]));
     if (!nearest.empty()) {
         std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-        cache.rebuild_distance = 0.2 * nearest[nearest.size() / 2];
+        cache.rebuild_distance = 0.35 * nearest[nearest.size() / 2];
     }
     ++cache.rebuilds;
     return 0.0;

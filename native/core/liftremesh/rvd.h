@@ -71,8 +71,8 @@ int resolve_threads(int threads);
 //! optimiser's iterates): nearest-neighbour lists and, per triangle, a site whose cell met it.
 //! If no site moved more than delta since the lists were made, a listed neighbour is now at
 //! least d0 - 2 delta away and an unlisted one at least d0(last) - 2 delta, so the security
-//! radius test stays exact with stale lists; they are rebuilt once delta grows past a fifth
-//! of the typical spacing. Optional: the diagram is the same with or without it (up to rounding).
+//! radius test stays exact with stale lists; they are rebuilt once delta grows past 0.35 times
+//! the typical spacing. Optional: the diagram is the same with or without it (up to rounding).
 struct RvdCache {
     LiftedPoints anchor;             //!< #S by 3 site positions the lists were made at
     std::vector<int32_t> neighbours; //!< #S by k, nearest first at `anchor` (3D distances)
