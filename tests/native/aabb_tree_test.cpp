@@ -107,3 +107,21 @@ TEST(AabbTree, MovedTreeStillAnswers) {
     c = std::move(b);
     EXPECT_NEAR(std::sqrt(c.closest(Eigen::Vector3d(0, 0, 3)).squared_distance), 2.0, 0.05);
 }
+
+TEST(AabbTree, WarmStartGivesTheSameDistanceAsAColdQuery) {
+    const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
+    const AabbTree tree(m);
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6);
+    for (int i = 0; i < 500; ++i) {
+        const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
+        const Eigen::Vector3d hint = m.points.row(i % m.points.rows()).transpose(); // on the mesh, maybe far
+        const ClosestPoint cold = tree.closest(q), warm = tree.closest(q, hint);
+        EXPECT_NEAR(warm.squared_distance, cold.squared_distance, 1e-14) << i;
+        EXPECT_NEAR((warm.point - cold.point).norm(), 0.0, 1e-7) << i;
+    }
+    // A hint that is the answer itself: nothing is strictly nearer, the hint comes back.
+    const Eigen::Vector3d q(1.5, 0.0, 0.0);
+    const ClosestPoint exact = tree.closest(q);
+    EXPECT_EQ(tree.closest(q, exact.point).squared_distance, exact.squared_distance);
+}

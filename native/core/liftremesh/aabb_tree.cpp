@@ -121,8 +121,15 @@ AabbTree::AabbTree(AabbTree&&) noexcept = default;
 AabbTree& AabbTree::operator=(AabbTree&&) noexcept = default;
 
 ClosestPoint AabbTree::closest(const Eigen::Vector3d& q) const {
-    ClosestPoint best{Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()),
-                      std::numeric_limits<double>::infinity(), -1};
+    return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()),
+                      std::numeric_limits<double>::infinity(), -1});
+}
+
+ClosestPoint AabbTree::closest(const Eigen::Vector3d& q, const Eigen::Vector3d& on_mesh) const {
+    return search(q, {on_mesh, (on_mesh - q).squaredNorm(), -1});
+}
+
+ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best) const {
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
 

@@ -29,7 +29,13 @@ public:
     //! Where several triangles are equally near, which one is reported is unspecified.
     ClosestPoint closest(const Eigen::Vector3d& q) const;
 
+    //! The same, warm-started by `on_mesh`, any point known to lie on the mesh (such as the
+    //! answer for a nearby query): its distance bounds the search and prunes most of the tree.
+    //! If no triangle is strictly nearer, the answer is `on_mesh` itself with triangle -1.
+    ClosestPoint closest(const Eigen::Vector3d& q, const Eigen::Vector3d& on_mesh) const;
+
 private:
+    ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best) const; // best: initial bound
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 
 namespace liftremesh {
 
@@ -105,6 +107,45 @@ double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const
     const Eigen::Vector2d A = to2d(a), B = to2d(b), C = to2d(c);
     const double area = disk_wedge_area(A, B, rho) + disk_wedge_area(B, C, rho) + disk_wedge_area(C, A, rho);
     return std::abs(area);
+}
+
+namespace {
+// Interleaves the low 21 bits of x with two zero bits between each (for 3D Morton codes).
+std::uint64_t spread_bits(std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
+    return x;
+}
+} // namespace
+
+std::vector<long> morton_order(const double* xyz, long n, int stride) {
+    std::vector<long> order(static_cast<size_t>(std::max(0L, n)));
+    if (n <= 0) return order;
+    double lo[3], hi[3];
+    for (int j = 0; j < 3; ++j) lo[j] = hi[j] = xyz[j];
+    for (long i = 0; i < n; ++i)
+        for (int j = 0; j < 3; ++j) {
+            lo[j] = std::min(lo[j], xyz[i * stride + j]);
+            hi[j] = std::max(hi[j], xyz[i * stride + j]);
+        }
+    const double scale = static_cast<double>((1 << 21) - 1);
+    std::vector<std::pair<std::uint64_t, long>> keys(order.size());
+    for (long i = 0; i < n; ++i) {
+        std::uint64_t code = 0;
+        for (int j = 0; j < 3; ++j) {
+            const double extent = hi[j] - lo[j];
+            const double t = extent > 0.0 ? (xyz[i * stride + j] - lo[j]) / extent : 0.0;
+            code |= spread_bits(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * scale)) << j;
+        }
+        keys[i] = {code, i};
+    }
+    std::sort(keys.begin(), keys.end());
+    for (long i = 0; i < n; ++i) order[i] = keys[i].second;
+    return order;
 }
 
 } // namespace liftremesh

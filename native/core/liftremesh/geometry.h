@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
 
 namespace liftremesh {
 
@@ -54,5 +55,9 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 //! i.e. of the triangle with the disk cut by the ball in the triangle's plane (Section 5.2.1).
 double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Indices 0..n-1 sorted along a Morton (Z-order) curve of n points, the point i being
+//! xyz[i * stride + 0..2]: points near in space come near in the order (cache locality).
+std::vector<long> morton_order(const double* xyz, long n, int stride);
 
 } // namespace liftremesh

@@ -203,12 +203,27 @@ std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, long samples, std:
     return points;
 }
 
-//! Distance from each point to the tree's mesh; the loop is parallel, the result deterministic.
+//! Distance from each point to the tree's mesh; the loop is parallel, the result deterministic
+//! (each distance is exact). Points are visited along a Morton curve, each query warm-started
+//! by the previous answer of its thread, which lies on the mesh near it.
 std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, const AabbTree& tree) {
     std::vector<double> d(points.size());
     const long n = static_cast<long>(points.size());
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) d[i] = std::sqrt(tree.closest(points[i]).squared_distance);
+    if (n == 0) return d;
+    const std::vector<long> order = morton_order(points[0].data(), n, 3);
+#pragma omp parallel
+    {
+        bool warm = false;
+        Eigen::Vector3d previous;
+#pragma omp for schedule(static)
+        for (long s = 0; s < n; ++s) {
+            const long i = order[s];
+            const ClosestPoint c = warm ? tree.closest(points[i], previous) : tree.closest(points[i]);
+            d[i] = std::sqrt(c.squared_distance);
+            previous = c.point;
+            warm = true;
+        }
+    }
     return d;
 }
 

@@ -9,45 +9,6 @@
 
 namespace liftremesh {
 
-namespace {
-
-// Interleaves the low 21 bits of x with two zero bits between each (for 3D Morton codes).
-std::uint64_t spread_bits(std::uint64_t x) {
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffULL;
-    x = (x | x << 16) & 0x1f0000ff0000ffULL;
-    x = (x | x << 8) & 0x100f00f00f00f00fULL;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-    x = (x | x << 2) & 0x1249249249249249ULL;
-    return x;
-}
-
-// Reorders the rows of `sites` along a Morton (Z-order) curve of their first three coordinates,
-// so that sites near in space are near in memory: the kd-tree queries and clipping of the
-// diagram then mostly hit the cache (sites move little during the optimisation).
-void sort_spatially(LiftedPoints& sites) {
-    const long n = sites.rows();
-    if (n < 2) return;
-    const Eigen::RowVector3d lo = sites.leftCols(3).colwise().minCoeff();
-    const Eigen::RowVector3d extent = (sites.leftCols(3).colwise().maxCoeff() - lo).cwiseMax(1e-300);
-    const double scale = static_cast<double>((1 << 21) - 1);
-    std::vector<std::pair<std::uint64_t, long>> keys(n);
-    for (long i = 0; i < n; ++i) {
-        std::uint64_t code = 0;
-        for (int j = 0; j < 3; ++j) {
-            const auto q = static_cast<std::uint64_t>((sites(i, j) - lo[j]) / extent[j] * scale);
-            code |= spread_bits(q) << j;
-        }
-        keys[i] = {code, i};
-    }
-    std::sort(keys.begin(), keys.end());
-    LiftedPoints sorted(n, sites.cols());
-    for (long i = 0; i < n; ++i) sorted.row(i) = sites.row(keys[i].second);
-    sites = std::move(sorted);
-}
-
-} // namespace
-
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed) {
     const Eigen::Index nf = surface.triangles.rows();
     std::vector<double> cumulative(nf);
@@ -75,8 +36,12 @@ LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_
         sites.row(k) = (1.0 - a - b) * surface.points.row(surface.triangles(f, 0)) +
                        a * surface.points.row(surface.triangles(f, 1)) + b * surface.points.row(surface.triangles(f, 2));
     }
-    sort_spatially(sites);
-    return sites;
+    // Near in space, near in memory: the diagram's kd-tree queries and clipping then mostly hit
+    // the cache (sites move little during the optimisation).
+    const std::vector<long> order = morton_order(sites.data(), count, static_cast<int>(sites.cols()));
+    LiftedPoints sorted(count, sites.cols());
+    for (long i = 0; i < count; ++i) sorted.row(i) = sites.row(order[i]);
+    return sorted;
 }
 
 } // namespace liftremesh
