@@ -77,14 +77,14 @@ def table(rows):
             if stage not in stages:
                 stages.append(stage)
     head = (["input", "target V", "sites", "iterations"] + ["%s s" % s for s in stages]
-            + ["wall s", "peak MiB", "kappa min", "kappa mean", "Hausdorff %", "chi in/out"])
+            + ["wall s", "peak MiB", "kappa min", "kappa mean", "sharp60 out/in", "Hausdorff %", "chi in/out"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
         report = row.get("report")
         if report is None:
             cells = ([row["name"], str(row["target"]), "failed (exit %d)" % row["rc"], row["error"]]
                      + ["-"] * len(stages) + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f")]
-                     + ["-"] * 4)
+                     + ["-"] * 5)
         else:
             times = dict(stage_times(report.get("timings")))
             out = report["output"]
@@ -93,11 +93,21 @@ def table(rows):
                      + [fmt(times.get(s), ".2f") for s in stages]
                      + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f"),
                         fmt(out["kappa_min"], ".3f"), fmt(out["kappa_mean"], ".3f"),
+                        sharp_ratio(report),
                         fmt(report["hausdorff_relative"], ".3f", 100.0),
                         "%d / %d" % (report["input"]["euler_characteristic"],
                                      out["euler_characteristic"])])
         lines.append("| " + " | ".join(c.replace("|", "/") for c in cells) + " |")
     return "\n".join(lines)
+
+
+def sharp_ratio(report):
+    """Total length of edges sharper than 60 degrees, output over input ('-' if the input has none)."""
+    inside = report["input"].get("sharp_edge_length")
+    outside = report["output"].get("sharp_edge_length")
+    if not inside or outside is None:
+        return "-"
+    return "%.4f" % (outside / inside)
 
 
 def main():
