@@ -22,8 +22,7 @@ struct TriangleGroups {
     std::vector<std::unique_ptr<KdTree>> trees;
 };
 
-TriangleGroups group_triangles(const Mesh& mesh, const std::vector<Eigen::Vector3d>& centroid,
-                               const std::vector<double>& bound) {
+TriangleGroups group_triangles(const std::vector<Eigen::Vector3d>& centroid, const std::vector<double>& bound) {
     TriangleGroups g;
     const double rmax = *std::max_element(bound.begin(), bound.end());
     const int levels = 12; // radius classes rmax / 2^c; the last takes everything smaller
@@ -40,7 +39,6 @@ TriangleGroups group_triangles(const Mesh& mesh, const std::vector<Eigen::Vector
         for (size_t i = 0; i < g.members[c].size(); ++i) pts.row(i) = centroid[g.members[c][i]].transpose();
         g.trees.push_back(std::make_unique<KdTree>(pts));
     }
-    (void)mesh;
     return g;
 }
 
@@ -59,7 +57,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
         bound[f] = std::max({(a - centroid[f]).norm(), (b - centroid[f]).norm(), (c - centroid[f]).norm()});
         for (int j = 0; j < 3; ++j) ring.row(mesh.triangles(f, j)) += area[f] * face_normal[f].transpose();
     }
-    const TriangleGroups groups = group_triangles(mesh, centroid, bound);
+    const TriangleGroups groups = group_triangles(centroid, bound);
 
     Points normals(nv, 3);
 #pragma omp parallel
