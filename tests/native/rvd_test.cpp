@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 using namespace liftremesh;
 
@@ -56,4 +57,33 @@ TEST(CellAreas, ASingleSiteOwnsTheWholeSurface) {
     LiftedPoints v(1, 3);
     v << 0.1, 0.2, 0.3;
     EXPECT_NEAR(restricted_cell_areas(s, v)[0], 24.0, 1e-12);
+}
+
+// RvdCache: neighbour lists made for earlier positions must give the same diagram as fresh
+// ones, including when a list runs out and is extended (irregular, unoptimised sites).
+TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
+    const Mesh m = test::make_torus(0.6, 0.25, 40, 16);
+    const LiftedSurface s = lifted(m, 0.05, 0.0);
+    LiftedPoints v = test::sites_near(s, 500, 0.002, 21);
+    auto areas_with = [&](const LiftedPoints& sites, RvdCache* cache) {
+        Eigen::VectorXd a = Eigen::VectorXd::Zero(sites.rows());
+        std::vector<Eigen::VectorXd> per_thread(2, a);
+        compute_rvd(s, sites, 2, [&](int t, const RvdPolygon& p) { per_thread[t][p.site] += polygon_area(p); }, cache);
+        return Eigen::VectorXd(per_thread[0] + per_thread[1]);
+    };
+    RvdCache cache;
+    areas_with(v, &cache);
+    ASSERT_EQ(cache.rebuilds, 1);
+    std::mt19937_64 rng(8);
+    std::normal_distribution<double> step(0.0, 0.25 * cache.rebuild_distance);
+    long reused = 0;
+    for (int round = 0; round < 6; ++round) {
+        for (Eigen::Index i = 0; i < v.rows(); ++i)
+            for (int j = 0; j < 3; ++j) v(i, j) += step(rng) / std::sqrt(6.0);
+        const long rebuilds = cache.rebuilds;
+        const Eigen::VectorXd cached = areas_with(v, &cache), fresh = areas_with(v, nullptr);
+        reused += cache.rebuilds == rebuilds;
+        EXPECT_LT((cached - fresh).cwiseAbs().maxCoeff(), 1e-12 * fresh.sum()) << "round " << round;
+    }
+    EXPECT_GT(reused, 0); // the stale lists were actually used
 }

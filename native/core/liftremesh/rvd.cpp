@@ -251,7 +251,10 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         list = more.data();
                         list_d2 = more_d2.data();
                         slack = 0.0; // fresh distances
-                        if (j >= count) break;
+                        // The fresh list need not start with the stale one's sites (a site may
+                        // have moved closer): scan it from the start. Bisectors already applied
+                        // cut nothing the second time.
+                        j = 0;
                     }
                     const int32_t l = list[j];
                     if (l == k) continue;
