@@ -55,7 +55,7 @@ const std::vector<ParameterInfo>& parameter_table() {
         {"sigma", "sigma", "5", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"},
         {"delta", "delta", "0.4 (isotropic), 0 (anisotropic)", "exponent of the curvature density rho^delta"},
         {"nu", "nu", "0.01 (isotropic), 0.05 (anisotropic)", "normal lifting scale, in unit-ball units"},
-        {"eta", "eta", "0.01", "radius of the neighbourhood for vertex normals, in unit-ball units"},
+        {"eta", "eta", "0.02", "radius of the neighbourhood for vertex normals, in unit-ball units"},
         {"iterations", "", "100", "L-BFGS iterations (last 10%, at least 10, with sigma)"},
         {"seed", "", "1", "seed of the random initial sampling"},
         {"threads", "", "0", "worker threads (0 = all cores)"},
