@@ -89,16 +89,13 @@ struct AabbTree::Impl {
 };
 
 AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
-    const Eigen::Index nf = mesh.triangles.rows(), nv = mesh.points.rows();
+    check_indices(mesh, "AABB tree");
+    const Eigen::Index nf = mesh.triangles.rows();
     std::vector<std::array<Eigen::Vector3d, 3>> triangles(static_cast<size_t>(nf));
     std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
     for (Eigen::Index f = 0; f < nf; ++f) {
         for (int j = 0; j < 3; ++j) {
-            const int32_t v = mesh.triangles(f, j);
-            if (v < 0 || v >= nv)
-                throw InvalidInput("AABB tree: triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(v) + ", expected an index in [0, " + std::to_string(nv) + ")");
-            triangles[f][j] = mesh.points.row(v).transpose();
+            triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
         }
         centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
     }

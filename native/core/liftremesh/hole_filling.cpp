@@ -502,14 +502,8 @@ std::vector<std::vector<int32_t>> boundary_loops(const Mesh& mesh) {
 }
 
 long fill_holes(Mesh& mesh, const std::function<bool(const std::vector<int32_t>&)>& should_fill) {
+    check_indices(mesh, "fill_holes");
     const auto nv = mesh.points.rows();
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) {
-            const auto i = mesh.triangles(f, j);
-            if (i < 0 || i >= nv)
-                throw InvalidInput("fill_holes: triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(i) + ", expected an index in [0, " + std::to_string(nv) + ")");
-        }
     const std::vector<HoleEdge> edges = hole_edges(mesh.triangles);
     const auto loops = trace_loops(edges, nv);
     if (loops.empty()) return 0;

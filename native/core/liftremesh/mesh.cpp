@@ -89,13 +89,17 @@ void check_mesh(const Mesh& mesh, const char* what) {
         throw InvalidInput(name + " mesh is empty: expected at least one triangle");
     if (!mesh.points.allFinite())
         throw InvalidInput(name + " mesh has a non-finite vertex coordinate (NaN or infinity)");
+    check_indices(mesh, name + " mesh");
+}
+
+void check_indices(const Mesh& mesh, const std::string& what) {
     const auto n = mesh.points.rows();
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
         for (int j = 0; j < 3; ++j) {
             const auto i = mesh.triangles(f, j);
             if (i < 0 || i >= n)
-                throw InvalidInput(name + " mesh triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(i) + ", expected an index in [0, " + std::to_string(n) + ")");
+                throw InvalidInput(what + ": triangle " + std::to_string(f) + " refers to vertex " + std::to_string(i) +
+                                   ", expected an index in [0, " + std::to_string(n) + ")");
         }
 }
 

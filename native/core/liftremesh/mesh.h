@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace liftremesh {
@@ -52,6 +53,10 @@ std::vector<EdgeCount> edge_counts(const Triangles& triangles);
 
 //! V - E + F counting only vertices referenced by a triangle.
 int euler_characteristic(const Mesh& mesh);
+
+//! Throws InvalidInput if a triangle refers to a vertex that does not exist. `what` names the
+//! mesh or the caller in the message ("input mesh", "make_manifold", ...).
+void check_indices(const Mesh& mesh, const std::string& what);
 
 //! Throws InvalidInput naming the problem if indices are out of range, a coordinate is not
 //! finite, or the mesh is empty. `what` names the mesh in the message ("input", "output").

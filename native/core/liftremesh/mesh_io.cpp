@@ -398,15 +398,6 @@ struct PointKeyHash {
     }
 };
 
-void check_indices(const Mesh& mesh) {
-    const Eigen::Index n = mesh.points.rows();
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j)
-            if (mesh.triangles(f, j) < 0 || mesh.triangles(f, j) >= n)
-                throw InvalidInput("triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(mesh.triangles(f, j)) + ", expected an index in [0, " +
-                                   std::to_string(n) + ")");
-}
 
 // ---- writing ----------------------------------------------------------------------------------
 
@@ -518,7 +509,7 @@ void check_mesh_extension(const std::string& path) { format_of(path); }
 
 void write_mesh(const std::string& path, const Mesh& mesh) {
     const Format format = format_of(path);
-    check_indices(mesh);
+    check_indices(mesh, quoted(path));
     std::string text;
     switch (format) {
     case Format::stl: text = stl_binary_text(mesh); break;
@@ -533,7 +524,7 @@ void write_mesh(const std::string& path, const Mesh& mesh) {
 }
 
 void weld_exact(Mesh& mesh) {
-    check_indices(mesh);
+    check_indices(mesh, "weld_exact");
     const Eigen::Index n = mesh.points.rows();
     std::unordered_map<PointKey, int32_t, PointKeyHash> first_of;
     first_of.reserve(static_cast<size_t>(n));

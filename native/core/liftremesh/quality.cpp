@@ -20,15 +20,6 @@ Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
     return mesh.points.row(mesh.triangles(f, j)).transpose();
 }
 
-void check_indices(const Mesh& mesh, const char* what) {
-    const Eigen::Index n = mesh.points.rows();
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j)
-            if (mesh.triangles(f, j) < 0 || mesh.triangles(f, j) >= n)
-                throw InvalidInput(std::string(what) + " mesh triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(mesh.triangles(f, j)) + ", expected an index in [0, " +
-                                   std::to_string(n) + ")");
-}
 
 // ---- per triangle -------------------------------------------------------------------------------
 
@@ -230,7 +221,7 @@ std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, con
 } // namespace
 
 MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
-    check_indices(mesh, "measured");
+    check_indices(mesh, "measured mesh");
     MeshQuality q;
     std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)

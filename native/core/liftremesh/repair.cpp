@@ -359,14 +359,7 @@ private:
 } // namespace
 
 RepairStats make_manifold(Mesh& mesh) {
-    const auto n = mesh.points.rows();
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) {
-            const auto i = mesh.triangles(f, j);
-            if (i < 0 || i >= n)
-                throw InvalidInput("make_manifold: triangle " + std::to_string(f) + " refers to vertex " +
-                                   std::to_string(i) + ", expected an index in [0, " + std::to_string(n) + ")");
-        }
+    check_indices(mesh, "make_manifold");
     RepairStats stats;
     Repairer repair(mesh.points, mesh.triangles);
     stats.degenerate_removed = repair.remove_degenerate();
