@@ -31,7 +31,8 @@ struct Problem {
     int iteration_offset, total;
     int evaluations = 0;
     int iterations = 0;
-    double last_energy = 0.0;
+    double first_energy = 0.0; // at the start point, first phase's sigma
+    double last_energy = 0.0;  // at the last accepted iterate, its phase's sigma
     bool cancelled = false;
     std::exception_ptr error; // an exception from the objective, rethrown after lbfgs returns
     LiftedPoints sites, gradient;
@@ -45,7 +46,7 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
         const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, &p.cache);
         std::copy(p.gradient.data(), p.gradient.data() + n, g);
-        ++p.evaluations;
+        if (p.evaluations++ == 0) p.first_energy = f; // libLBFGS evaluates the start point first
         return f;
     } catch (...) {
         // Unwinding through C is not allowed: report a non-finite value so the line search stops.
@@ -112,10 +113,6 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
     problem.progress = &progress;
     problem.iteration_offset = 0;
     problem.total = iterations;
-    {
-        LiftedPoints g;
-        result.energy_initial = cvt_objective(surface, sites, 1.0, problem.threads, g);
-    }
     // Phase 1 (sigma = 1), then phase 2 (sigma) (Section 6.2.2). A phase whose line search
     // fails early is restarted (fresh L-BFGS memory) while it still makes progress.
     const std::pair<double, int> phases[2] = {{1.0, schedule.plain}, {sigma, schedule.feature}};
@@ -131,8 +128,8 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
         }
     }
     result.evaluations = problem.evaluations;
-    LiftedPoints g;
-    result.energy_final = cvt_objective(surface, sites, schedule.feature > 0 ? sigma : 1.0, problem.threads, g);
+    result.energy_initial = problem.first_energy;
+    result.energy_final = result.iterations > 0 ? problem.last_energy : problem.first_energy;
     return result;
 }
 

@@ -10,8 +10,8 @@ namespace liftremesh {
 struct OptimizeResult {
     int iterations = 0;          //!< L-BFGS iterations done, both phases
     int evaluations = 0;         //!< objective evaluations (RVD computations)
-    double energy_initial = 0.0; //!< F at the start, sigma = 1
-    double energy_final = 0.0;   //!< F at the end, with the final phase's sigma
+    double energy_initial = 0.0; //!< F at the start, with the first phase's sigma (1 unless iterations <= 10)
+    double energy_final = 0.0;   //!< F at the last iterate, with its phase's sigma
 };
 
 //! The iteration counts of the two phases for `iterations` in all: sigma = 1 for the first

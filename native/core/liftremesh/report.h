@@ -21,8 +21,8 @@ struct RemeshReport {
     double mean_distance_relative = 0.0; //!< mean sampled distance / bbox_diagonal
     long sites = 0;                      //!< number of sites optimised
     int iterations = 0;                  //!< L-BFGS iterations done
-    double energy_initial = 0.0;         //!< objective at the random start (sigma = 1)
-    double energy_final = 0.0;           //!< objective at the end (final sigma)
+    double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)
+    double energy_final = 0.0;           //!< objective at the last iterate (its phase's sigma)
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
