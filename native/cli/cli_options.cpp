@@ -2,6 +2,7 @@
 
 #include "liftremesh/exceptions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -126,18 +127,19 @@ std::string usage() {
          ".stl (ASCII or binary in, binary out), .obj, .off. Progress goes to stderr.\n"
          "\n"
          "options (default in brackets):\n";
+    auto line = [&s](std::string flag, const std::string& help) {
+        flag.resize(std::max<size_t>(flag.size() + 1, 24), ' ');
+        s << flag << help << "\n";
+    };
     for (const ParameterInfo& p : parameter_table()) {
         std::string name = p.name;
-        for (char& c : name)
-            if (c == '_') c = '-';
-        std::string flag = "  --" + name + " " + (p.name == "mode" ? "M" : "X");
-        flag.resize(std::max<size_t>(flag.size() + 1, 22), ' ');
-        s << flag << p.help << " [" << p.default_text << "]\n";
+        std::replace(name.begin(), name.end(), '_', '-');
+        line("  --" + name + " " + p.metavar, p.help + " [" + p.default_text + "]");
     }
-    s << "  --report FILE.json   write the quality report as JSON\n"
-         "  --quiet              no progress output\n"
-         "  --help               this text\n"
-         "\n"
+    line("  --report FILE.json", "write the quality report as JSON");
+    line("  --quiet", "no progress output");
+    line("  --help", "this text");
+    s << "\n"
          "exit status: 0 success, 2 bad input or option, 1 other failure.\n";
     return s.str();
 }

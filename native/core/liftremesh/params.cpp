@@ -49,16 +49,16 @@ void RemeshParams::validate() const {
 
 const std::vector<ParameterInfo>& parameter_table() {
     static const std::vector<ParameterInfo> table = {
-        {"vertices", "", "6000", "target number of output vertices (sites)"},
-        {"edge_length", "h", "unset", "target edge length in input units; replaces --vertices"},
-        {"mode", "", "isotropic", "isotropic (with local density) or anisotropic; sets nu and delta defaults"},
-        {"sigma", "sigma", "5", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"},
-        {"delta", "delta", "0.4 (isotropic), 0 (anisotropic)", "exponent of the curvature density rho^delta"},
-        {"nu", "nu", "0.01 (isotropic), 0.05 (anisotropic)", "normal lifting scale, in unit-ball units"},
-        {"eta", "eta", "0.02", "radius of the neighbourhood for vertex normals, in unit-ball units"},
-        {"iterations", "", "100", "L-BFGS iterations (last 10%, at least 10, with sigma)"},
-        {"seed", "", "1", "seed of the random initial sampling"},
-        {"threads", "", "0", "worker threads (0 = all cores)"},
+        {"vertices", "N", "", "6000", "target number of output vertices (sites)"},
+        {"edge_length", "H", "h", "unset", "target edge length in input units; replaces --vertices"},
+        {"mode", "MODE", "", "isotropic", "isotropic (with local density) or anisotropic; sets nu and delta defaults"},
+        {"sigma", "S", "sigma", "5", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"},
+        {"delta", "D", "delta", "0.4 (isotropic), 0 (anisotropic)", "exponent of the curvature density rho^delta"},
+        {"nu", "NU", "nu", "0.01 (isotropic), 0.05 (anisotropic)", "normal lifting scale, in unit-ball units"},
+        {"eta", "ETA", "eta", "0.02", "radius of the neighbourhood for vertex normals, in unit-ball units"},
+        {"iterations", "K", "", "100", "L-BFGS iterations (last 10%, at least 10, with sigma)"},
+        {"seed", "R", "", "1", "seed of the random initial sampling"},
+        {"threads", "T", "", "0", "worker threads (0 = all cores)"},
     };
     return table;
 }

@@ -63,6 +63,7 @@ struct RemeshParams {
 //! One row per user-facing parameter, for --help texts and bindings.
 struct ParameterInfo {
     std::string name;       //!< snake_case field name (CLI: --name-with-dashes)
+    std::string metavar;    //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
     std::string symbol;     //!< the paper's symbol, or "" if none
     std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")
     std::string help;       //!< one-line meaning
