@@ -17,11 +17,16 @@ struct ObjectiveAccumulator {
     const LiftedSurface& surface;
     const LiftedPoints& sites;
     double sigma;
-    std::vector<double> value;        // per thread
-    std::vector<LiftedPoints> grad;   // per thread, #S by D
+    struct Sums {
+        double value = 0.0;
+        LiftedPoints grad; // #S by D
+    };
+    std::vector<ThreadSlot<Sums>> sums; // per thread
 
     ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig, int threads)
-        : surface(s), sites(v), sigma(sig), value(threads, 0.0), grad(threads, LiftedPoints::Zero(v.rows(), D)) {}
+        : surface(s), sites(v), sigma(sig), sums(threads) {
+        for (auto& slot : sums) slot.value.grad = LiftedPoints::Zero(v.rows(), D);
+    }
 
     // Every polygon lies in the plane of its triangle p and arrives in p's orthonormal frame
     // (x = x0 + a u1 + b u2), so the integrals are 2D ones: with w_k = v_k - x0 split into its
@@ -77,8 +82,9 @@ struct ObjectiveAccumulator {
             }
             g += coef_mid.x() * u1 + coef_mid.y() * u2 - coef_sum * wk;
         }
-        value[thread] += w * f;
-        grad[thread].row(k) += w * g.transpose();
+        Sums& mine = sums[thread].value;
+        mine.value += w * f;
+        mine.grad.row(k) += w * g.transpose();
     }
 };
 
@@ -90,8 +96,8 @@ double objective_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     double total = 0.0;
     gradient = LiftedPoints::Zero(sites.rows(), D);
     for (int t = 0; t < threads; ++t) {
-        total += acc.value[t];
-        gradient += acc.grad[t];
+        total += acc.sums[t].value.value;
+        gradient += acc.sums[t].value.grad;
     }
     return total;
 }

@@ -7,7 +7,7 @@ namespace liftremesh {
 
 Triangles restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads) {
     const int n = resolve_threads(threads);
-    std::vector<std::vector<std::array<int32_t, 3>>> found(n);
+    std::vector<ThreadSlot<std::vector<std::array<int32_t, 3>>>> found(n);
     compute_rvd(surface, sites, n, [&](int thread, const RvdPolygon& poly) {
         for (int i = 0; i < poly.size; ++i) {
             // Vertex i joins the edge before it (from i-1) and the edge after it (from i).
@@ -16,11 +16,11 @@ Triangles restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& 
             std::array<int32_t, 3> t = {poly.site, l, m};
             // Rotate so the smallest index comes first: the three cells report the same triangle.
             std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-            found[thread].push_back(t);
+            found[thread].value.push_back(t);
         }
     });
     std::vector<std::array<int32_t, 3>> all;
-    for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
+    for (auto& f : found) all.insert(all.end(), f.value.begin(), f.value.end());
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
     Triangles out(static_cast<Eigen::Index>(all.size()), 3);

@@ -64,6 +64,13 @@ struct RvdPolygon {
 //! Called for every non-empty polygon; `thread` in [0, resolve_threads(threads)).
 using PolygonVisitor = std::function<void(int thread, const RvdPolygon& polygon)>;
 
+//! A visitor's per-thread accumulator, on a cache line of its own: threads write their slots on
+//! every polygon, and slots sharing a line would make them invalidate each other's caches.
+template <class T>
+struct alignas(64) ThreadSlot {
+    T value{};
+};
+
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
