@@ -74,6 +74,34 @@ std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
     return out;
 }
 
+int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan) {
+    const int n = static_cast<int>(around.size());
+    std::vector<int> parent(n);
+    for (int i = 0; i < n; ++i) parent[i] = i;
+    auto find = [&](int i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    // Spokes (w, i): triangle i has the edge (v, w). Triangles with a common spoke share that edge.
+    std::vector<std::pair<int32_t, int>> spokes;
+    spokes.reserve(2 * around.size());
+    for (int i = 0; i < n; ++i)
+        for (int32_t w : around[i])
+            if (w != v) spokes.emplace_back(w, i);
+    std::sort(spokes.begin(), spokes.end());
+    for (size_t k = 1; k < spokes.size(); ++k)
+        if (spokes[k].first == spokes[k - 1].first) parent[find(spokes[k].second)] = find(spokes[k - 1].second);
+    fan.assign(n, -1);
+    std::vector<int> label_of_root(n, -1);
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+        int& label = label_of_root[find(i)];
+        if (label < 0) label = count++;
+        fan[i] = label;
+    }
+    return count;
+}
+
 int euler_characteristic(const Mesh& mesh) {
     std::vector<char> used(mesh.points.rows(), 0);
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)

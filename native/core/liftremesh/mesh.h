@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -50,6 +51,12 @@ struct EdgeCount {
     int count;
 };
 std::vector<EdgeCount> edge_counts(const Triangles& triangles);
+
+//! Groups the triangles around vertex v into fans: two triangles are in one fan when a chain of
+//! edges (v, w) shared by triangles joins them. `around` lists the corners of the triangles that
+//! use v. Writes each triangle's fan into `fan` (0 .. count-1, numbered in order of first
+//! appearance) and returns the count: 1 at a manifold vertex, 0 if `around` is empty.
+int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan);
 
 //! V - E + F counting only vertices referenced by a triangle.
 int euler_characteristic(const Mesh& mesh);

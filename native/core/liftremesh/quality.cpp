@@ -100,10 +100,8 @@ void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
 
 // ---- per vertex ---------------------------------------------------------------------------------
 
-//! Number of vertices whose incident triangles fall into two or more groups that are not
-//! connected through edges at the vertex (e.g. two cones touching at their apex). The triangles
-//! around v are edge-connected exactly when their opposite edges (the link of v) form one
-//! connected graph, which a small union-find over the link vertices decides.
+//! Number of vertices whose incident triangles fall into two or more fans, groups not connected
+//! through edges at the vertex (e.g. two cones touching at their apex): vertex_fans (mesh.h).
 long count_nonmanifold_vertices(const Mesh& mesh) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
     // Vertex -> incident triangles, compressed (offsets into `incident`).
@@ -117,42 +115,15 @@ long count_nonmanifold_vertices(const Mesh& mesh) {
         for (int j = 0; j < 3; ++j) incident[fill[mesh.triangles(f, j)]++] = static_cast<int32_t>(f);
 
     long count = 0;
-    std::vector<std::pair<int32_t, int32_t>> link;
-    std::vector<int32_t> nodes, parent;
-    auto find = [&](int32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
+    std::vector<std::array<int32_t, 3>> around;
+    std::vector<int> fan;
     for (Eigen::Index v = 0; v < nv; ++v) {
-        link.clear();
+        around.clear();
         for (int32_t k = offsets[v]; k < offsets[v + 1]; ++k) {
             const int32_t f = incident[k];
-            int j = 0;
-            while (mesh.triangles(f, j) != v) ++j;
-            link.emplace_back(mesh.triangles(f, (j + 1) % 3), mesh.triangles(f, (j + 2) % 3));
+            around.push_back({mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)});
         }
-        if (link.size() < 2) continue;
-        nodes.clear();
-        for (const auto& [s, t] : link) {
-            nodes.push_back(s);
-            nodes.push_back(t);
-        }
-        std::sort(nodes.begin(), nodes.end());
-        nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-        parent.resize(nodes.size());
-        std::iota(parent.begin(), parent.end(), 0);
-        auto slot = [&](int32_t x) {
-            return static_cast<int32_t>(std::lower_bound(nodes.begin(), nodes.end(), x) - nodes.begin());
-        };
-        int32_t components = static_cast<int32_t>(nodes.size());
-        for (const auto& [s, t] : link) {
-            const int32_t rs = find(slot(s)), rt = find(slot(t));
-            if (rs != rt) {
-                parent[rs] = rt;
-                --components;
-            }
-        }
-        if (components > 1) ++count;
+        if (vertex_fans(static_cast<int32_t>(v), around, fan) > 1) ++count;
     }
     return count;
 }

@@ -125,9 +125,9 @@ public:
         std::vector<char> queued(vertex_tris.size(), 1);
         for (size_t v = 0; v < vertex_tris.size(); ++v) work.push_back(static_cast<int32_t>(v));
         long removed = 0;
-        std::vector<int> live, parent;
-        std::vector<std::pair<int32_t, int>> spokes; // (other vertex w of an edge (v, w), local triangle)
-        std::vector<std::pair<int, double>> fans;    // per local root: (triangles, area)
+        std::vector<int> live, fan;
+        std::vector<Tri> around;                  // corners of the live triangles around v
+        std::vector<std::pair<int, double>> fans; // per fan: (triangles, area)
         while (!work.empty()) {
             const int32_t v = work.front();
             work.pop_front();
@@ -137,34 +137,20 @@ public:
                 if (alive_[t]) live.push_back(t);
             vertex_tris[v] = live; // drop the dead ones for later visits
             if (live.size() < 2) continue;
-            // Union-find over the triangles around v; two are in one fan if they share an edge (v, w).
-            parent.resize(live.size());
-            for (size_t i = 0; i < live.size(); ++i) parent[i] = static_cast<int>(i);
-            auto find = [&](int i) {
-                while (parent[i] != i) i = parent[i] = parent[parent[i]];
-                return i;
-            };
-            spokes.clear();
-            for (size_t i = 0; i < live.size(); ++i)
-                for (int32_t w : tris_[live[i]])
-                    if (w != v) spokes.emplace_back(w, static_cast<int>(i));
-            std::sort(spokes.begin(), spokes.end());
-            for (size_t k = 1; k < spokes.size(); ++k)
-                if (spokes[k].first == spokes[k - 1].first) parent[find(spokes[k].second)] = find(spokes[k - 1].second);
-            fans.assign(live.size(), {0, 0.0});
-            size_t fan_count = 0;
-            for (size_t i = 0; i < live.size(); ++i) {
-                auto& fan = fans[find(static_cast<int>(i))];
-                fan_count += fan.first == 0;
-                fan.first += 1;
-                fan.second += area(live[i]);
-            }
+            around.clear();
+            for (int t : live) around.push_back(tris_[t]);
+            const int fan_count = vertex_fans(v, around, fan);
             if (fan_count < 2) continue;
-            int best_root = 0; // most triangles, then most area, then first
-            for (size_t r = 1; r < fans.size(); ++r)
-                if (fans[r] > fans[best_root]) best_root = static_cast<int>(r);
+            fans.assign(fan_count, {0, 0.0});
             for (size_t i = 0; i < live.size(); ++i) {
-                if (find(static_cast<int>(i)) == best_root) continue;
+                fans[fan[i]].first += 1;
+                fans[fan[i]].second += area(live[i]);
+            }
+            int best = 0; // most triangles, then most area, then first
+            for (int r = 1; r < fan_count; ++r)
+                if (fans[r] > fans[best]) best = r;
+            for (size_t i = 0; i < live.size(); ++i) {
+                if (fan[i] == best) continue;
                 alive_[live[i]] = 0;
                 ++removed;
                 for (int32_t w : tris_[live[i]])
