@@ -22,12 +22,6 @@ namespace {
 using Tri = std::array<int32_t, 3>;
 using EdgeSet = std::unordered_set<uint64_t>;
 
-// Key of the undirected edge {a, b}.
-uint64_t edge_key(int32_t a, int32_t b) {
-    const auto lo = static_cast<uint32_t>(std::min(a, b)), hi = static_cast<uint32_t>(std::max(a, b));
-    return (static_cast<uint64_t>(lo) << 32) | hi;
-}
-
 // A boundary edge, directed the way the hole runs (the reverse of its one triangle), and that triangle.
 struct HoleEdge {
     int32_t from, to;

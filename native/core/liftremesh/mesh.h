@@ -52,6 +52,12 @@ struct EdgeCount {
 };
 std::vector<EdgeCount> edge_counts(const Triangles& triangles);
 
+//! A 64-bit key of the undirected edge {a, b} (the same for (a, b) and (b, a)), for hash maps.
+inline std::uint64_t edge_key(int32_t a, int32_t b) {
+    const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
+    return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
 //! Groups the triangles around vertex v into fans: two triangles are in one fan when a chain of
 //! edges (v, w) shared by triangles joins them. `around` lists the corners of the triangles that
 //! use v. Writes each triangle's fan into `fan` (0 .. count-1, numbered in order of first

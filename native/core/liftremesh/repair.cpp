@@ -19,12 +19,6 @@ namespace {
 
 using Tri = std::array<int32_t, 3>;
 
-// Key of the undirected edge {a, b}.
-uint64_t edge_key(int32_t a, int32_t b) {
-    const auto lo = static_cast<uint32_t>(std::min(a, b)), hi = static_cast<uint32_t>(std::max(a, b));
-    return (static_cast<uint64_t>(lo) << 32) | hi;
-}
-
 // Hash of a sorted vertex triple, for duplicate detection.
 struct TriHash {
     size_t operator()(const Tri& t) const {
