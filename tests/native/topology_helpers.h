@@ -91,8 +91,6 @@ inline Topology topology(const Mesh& mesh) {
     return t;
 }
 
-inline Eigen::Vector3d corner(const Mesh& m, Eigen::Index f, int j) { return m.points.row(m.triangles(f, j)).transpose(); }
-
 //! Smallest kappa (Eq. 26) of triangles [first, #F).
 inline double min_kappa(const Mesh& m, Eigen::Index first = 0) {
     double k = 1.0;

@@ -8,17 +8,13 @@
 
 namespace liftremesh {
 
-namespace {
-Eigen::Vector3d point(const Points& p, int32_t i) { return p.row(i).transpose(); }
-} // namespace
-
 UnitBallTransform unit_ball_transform(const Mesh& mesh) {
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double total = 0.0;
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
-        const auto a = point(mesh.points, mesh.triangles(f, 0));
-        const auto b = point(mesh.points, mesh.triangles(f, 1));
-        const auto c = point(mesh.points, mesh.triangles(f, 2));
+        const auto a = corner(mesh, f, 0);
+        const auto b = corner(mesh, f, 1);
+        const auto c = corner(mesh, f, 2);
         const double area = triangle_area(a, b, c);
         weighted += area * (a + b + c) / 3.0;
         total += area;
@@ -29,7 +25,7 @@ UnitBallTransform unit_ball_transform(const Mesh& mesh) {
     double radius = 0.0;
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
         for (int j = 0; j < 3; ++j)
-            radius = std::max(radius, (point(mesh.points, mesh.triangles(f, j)) - t.center).norm());
+            radius = std::max(radius, (corner(mesh, f, j) - t.center).norm());
     t.scale = radius;
     return t;
 }
@@ -45,8 +41,8 @@ void undo_transform(const UnitBallTransform& t, Points& points) {
 double surface_area(const Mesh& mesh) {
     double total = 0.0;
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        total += triangle_area(point(mesh.points, mesh.triangles(f, 0)), point(mesh.points, mesh.triangles(f, 1)),
-                               point(mesh.points, mesh.triangles(f, 2)));
+        total += triangle_area(corner(mesh, f, 0), corner(mesh, f, 1),
+                               corner(mesh, f, 2));
     return total;
 }
 

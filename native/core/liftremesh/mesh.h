@@ -23,6 +23,11 @@ struct Mesh {
     Triangles triangles; //!< #F by 3
 };
 
+//! Position of corner j (0, 1, 2) of triangle f.
+inline Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
+    return mesh.points.row(mesh.triangles(f, j)).transpose();
+}
+
 //! Similarity that maps a mesh into the unit ball (Section 5.1): x' = (x - center) / scale.
 struct UnitBallTransform {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();

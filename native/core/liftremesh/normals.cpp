@@ -11,8 +11,6 @@ namespace liftremesh {
 
 namespace {
 
-Eigen::Vector3d vertex(const Mesh& m, Eigen::Index f, int j) { return m.points.row(m.triangles(f, j)).transpose(); }
-
 // Triangles grouped by bounding radius so that a ball query on centroids with radius
 // eta + (the group's largest radius) finds every triangle that can reach the ball, without
 // letting a few long needles force a huge radius on all queries.
@@ -50,7 +48,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
     std::vector<double> area(nf), bound(nf);
     Points ring = Points::Zero(nv, 3); // one-ring, area-weighted: the fallback and the side test
     for (Eigen::Index f = 0; f < nf; ++f) {
-        const auto a = vertex(mesh, f, 0), b = vertex(mesh, f, 1), c = vertex(mesh, f, 2);
+        const auto a = corner(mesh, f, 0), b = corner(mesh, f, 1), c = corner(mesh, f, 2);
         face_normal[f] = triangle_normal(a, b, c);
         area[f] = triangle_area(a, b, c);
         centroid[f] = (a + b + c) / 3.0;
@@ -75,8 +73,8 @@ Points vertex_normals(const Mesh& mesh, double eta) {
                 for (int32_t i : found) {
                     const int32_t f = groups.members[c][i];
                     if (own.dot(face_normal[f]) < -0.5) continue; // far side of a thin wall
-                    const double w = triangle_ball_intersection_area(x, eta, vertex(mesh, f, 0), vertex(mesh, f, 1),
-                                                                     vertex(mesh, f, 2));
+                    const double w = triangle_ball_intersection_area(x, eta, corner(mesh, f, 0), corner(mesh, f, 1),
+                                                                     corner(mesh, f, 2));
                     sum += w * face_normal[f];
                 }
             }

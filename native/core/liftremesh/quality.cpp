@@ -16,11 +16,6 @@ namespace liftremesh {
 
 namespace {
 
-Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
-    return mesh.points.row(mesh.triangles(f, j)).transpose();
-}
-
-
 // ---- per triangle -------------------------------------------------------------------------------
 
 //! Histogram bin of kappa: [0, 0.1) -> 0, ..., [0.9, 1.0] -> 9 (kappa == 1 in the last bin).
