@@ -1,0 +1,243 @@
+// The Python module `liftremesh`: the core's remesh() on numpy arrays. The only C++ file that
+// includes pybind11. Parameter names, defaults and help come from the core's parameter_table()
+// and RemeshParams, so the CLI, this module and the FreeCAD workbench share one source of truth.
+#include "liftremesh/exceptions.h"
+#include "liftremesh/params.h"
+#include "liftremesh/pipeline.h"
+#include "liftremesh/report.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+namespace py = pybind11;
+using namespace liftremesh;
+
+namespace {
+
+// Python exception types, created at import (see PYBIND11_MODULE below).
+PyObject* g_error = nullptr;             // liftremesh.Error(RuntimeError): base of all
+PyObject* g_invalid_input = nullptr;     // liftremesh.InvalidInput(Error, ValueError)
+PyObject* g_numerical_failure = nullptr; // liftremesh.NumericalFailure(Error)
+PyObject* g_topology_failure = nullptr;  // liftremesh.TopologyFailure(Error)
+PyObject* g_cancelled = nullptr;         // liftremesh.Cancelled(Error)
+
+PyObject* new_exception(py::module_& m, const char* name, PyObject* bases, const char* doc) {
+    const std::string qualified = std::string("liftremesh.") + name;
+    PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases, nullptr);
+    if (!type) throw py::error_already_set();
+    m.attr(name) = py::handle(type); // the module keeps a reference for as long as it lives
+    return type;
+}
+
+// (n, 3) float64 points: any real dtype is accepted and converted; shape and finiteness checked.
+Points to_points(const py::handle& obj) {
+    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    } catch (const py::error_already_set&) {
+        a = {};
+    }
+    if (!a) throw InvalidInput("points must be an (n, 3) array of numbers");
+    if (a.ndim() != 2 || a.shape(1) != 3)
+        throw InvalidInput("points must have shape (n, 3), got " + std::string(py::str(py::tuple(py::cast(
+                                                                      std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
+    Points points(a.shape(0), 3);
+    const double* data = a.data();
+    for (py::ssize_t i = 0; i < a.shape(0) * 3; ++i) {
+        if (!std::isfinite(data[i]))
+            throw InvalidInput("points[" + std::to_string(i / 3) + "] has a coordinate that is not finite");
+        points.data()[i] = data[i];
+    }
+    return points;
+}
+
+// (m, 3) integer triangles: the dtype must be integral (a float array is refused, not truncated).
+Triangles to_triangles(const py::handle& obj, Eigen::Index vertex_count) {
+    const py::array raw = py::array::ensure(obj);
+    if (!raw) throw InvalidInput("triangles must be an (m, 3) array of integers");
+    if (raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
+        throw InvalidInput("triangles must have an integer dtype, got " + std::string(py::str(raw.dtype())));
+    if (raw.ndim() != 2 || raw.shape(1) != 3)
+        throw InvalidInput("triangles must have shape (m, 3), got " + std::string(py::str(py::tuple(py::cast(
+                                                                         std::vector<py::ssize_t>(raw.shape(), raw.shape() + raw.ndim()))))));
+    const auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(raw);
+    Triangles triangles(a.shape(0), 3);
+    const long long* data = a.data();
+    for (py::ssize_t i = 0; i < a.shape(0) * 3; ++i) {
+        if (data[i] < 0 || data[i] >= vertex_count)
+            throw InvalidInput("triangles[" + std::to_string(i / 3) + "] refers to vertex " + std::to_string(data[i]) +
+                               ", expected an index in [0, " + std::to_string(vertex_count) + ")");
+        triangles.data()[i] = static_cast<int32_t>(data[i]);
+    }
+    return triangles;
+}
+
+template <typename T>
+void set_if(T& field, const std::optional<T>& value) {
+    if (value) field = *value;
+}
+
+py::dict parameter_defaults(const std::string& mode) {
+    const RemeshParams p = RemeshParams::for_mode(parse_mode(mode));
+    py::dict d;
+    d["vertices"] = p.target_vertices;
+    d["edge_length"] = py::none();
+    d["mode"] = std::string(to_string(p.mode));
+    d["sigma"] = p.sigma;
+    d["delta"] = p.delta;
+    d["nu"] = p.nu;
+    d["eta"] = p.eta;
+    d["iterations"] = p.iterations;
+    d["seed"] = p.seed;
+    d["threads"] = p.threads;
+    d["fill_holes"] = p.fill_holes;
+    return d;
+}
+
+py::list parameter_list() {
+    py::list rows;
+    for (const ParameterInfo& info : parameter_table()) {
+        py::dict row;
+        row["name"] = info.name;
+        row["metavar"] = info.metavar;
+        row["symbol"] = info.symbol;
+        row["default"] = info.default_text;
+        row["help"] = info.help;
+        rows.append(row);
+    }
+    return rows;
+}
+
+py::tuple remesh_arrays(const py::object& points_in, const py::object& triangles_in, std::optional<int> vertices,
+                        std::optional<double> edge_length, const std::string& mode, std::optional<double> sigma,
+                        std::optional<double> delta, std::optional<double> nu, std::optional<double> eta,
+                        std::optional<int> iterations, std::optional<std::uint64_t> seed, std::optional<int> threads,
+                        std::optional<bool> fill_holes, const py::object& progress) {
+    Mesh input;
+    input.points = to_points(points_in);
+    input.triangles = to_triangles(triangles_in, input.points.rows());
+
+    RemeshParams params = RemeshParams::for_mode(parse_mode(mode));
+    if (vertices && edge_length) throw InvalidInput("give either vertices or edge_length, not both");
+    set_if(params.target_vertices, vertices);
+    if (edge_length) {
+        if (!(*edge_length > 0.0) || !std::isfinite(*edge_length))
+            throw InvalidInput("edge_length = " + std::to_string(*edge_length) + " is out of range: expected a length > 0");
+        params.target_edge_length = *edge_length;
+    }
+    set_if(params.sigma, sigma);
+    set_if(params.delta, delta);
+    set_if(params.nu, nu);
+    set_if(params.eta, eta);
+    set_if(params.iterations, iterations);
+    set_if(params.seed, seed);
+    set_if(params.threads, threads);
+    set_if(params.fill_holes, fill_holes);
+    params.validate();
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw InvalidInput("progress must be callable or None");
+
+    // The callback runs on the calling thread (progress.h) with the GIL re-acquired. It stops the
+    // run when it returns False or raises; a raised exception (KeyboardInterrupt included) is
+    // re-raised unchanged after the core has unwound.
+    std::optional<py::error_already_set> callback_error;
+    ProgressCallback callback = [&](const Progress& p) -> bool {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {
+            callback_error.emplace();
+            return false;
+        }
+        if (progress.is_none()) return true;
+        try {
+            const py::object answer = progress(p.stage, p.iteration, p.total, p.energy);
+            return !(answer.ptr() == Py_False);
+        } catch (py::error_already_set& e) {
+            callback_error.emplace(std::move(e));
+            return false;
+        }
+    };
+
+    RemeshResult result;
+    {
+        py::gil_scoped_release release;
+        try {
+            result = remesh(input, params, callback);
+        } catch (const Cancelled&) {
+            if (!callback_error) throw;
+        }
+    }
+    if (callback_error) throw std::move(*callback_error);
+
+    const py::object json = py::module_::import("json");
+    py::dict report = json.attr("loads")(to_json(result.report));
+    py::array_t<double> points_out({result.mesh.points.rows(), Eigen::Index(3)});
+    std::copy(result.mesh.points.data(), result.mesh.points.data() + result.mesh.points.size(),
+              points_out.mutable_data());
+    py::array_t<int32_t> triangles_out({result.mesh.triangles.rows(), Eigen::Index(3)});
+    std::copy(result.mesh.triangles.data(), result.mesh.triangles.data() + result.mesh.triangles.size(),
+              triangles_out.mutable_data());
+    return py::make_tuple(points_out, triangles_out, report);
+}
+
+} // namespace
+
+PYBIND11_MODULE(liftremesh, m) {
+    m.doc() = "LiftRemesh: feature-sensitive isotropic and anisotropic remeshing of triangle surfaces "
+              "(centroidal Voronoi tessellation on the normal-lifted surface).";
+    m.attr("__version__") = LIFTREMESH_VERSION;
+
+    g_error = new_exception(m, "Error", PyExc_RuntimeError, "Base of every error LiftRemesh raises.");
+    const py::tuple invalid_bases = py::make_tuple(py::handle(g_error), py::handle(PyExc_ValueError));
+    g_invalid_input = new_exception(m, "InvalidInput", invalid_bases.ptr(),
+                                    "Bad arrays, mesh or parameters (also a ValueError).");
+    g_numerical_failure = new_exception(m, "NumericalFailure", g_error, "The computation produced non-finite values.");
+    g_topology_failure = new_exception(m, "TopologyFailure", g_error, "The output could not be made a valid surface.");
+    g_cancelled = new_exception(m, "Cancelled", g_error, "The progress callback asked to stop; nothing is returned.");
+
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const InvalidInput& e) {
+            PyErr_SetString(g_invalid_input, e.what());
+        } catch (const NumericalFailure& e) {
+            PyErr_SetString(g_numerical_failure, e.what());
+        } catch (const TopologyFailure& e) {
+            PyErr_SetString(g_topology_failure, e.what());
+        } catch (const Cancelled& e) {
+            PyErr_SetString(g_cancelled, e.what());
+        } catch (const Error& e) {
+            PyErr_SetString(g_error, e.what());
+        }
+    });
+
+    m.def("remesh", &remesh_arrays, py::arg("points"), py::arg("triangles"), py::kw_only(),
+          py::arg("vertices") = py::none(), py::arg("edge_length") = py::none(), py::arg("mode") = "isotropic",
+          py::arg("sigma") = py::none(), py::arg("delta") = py::none(), py::arg("nu") = py::none(),
+          py::arg("eta") = py::none(), py::arg("iterations") = py::none(), py::arg("seed") = py::none(),
+          py::arg("threads") = py::none(), py::arg("fill_holes") = py::none(), py::arg("progress") = py::none(),
+          R"doc(Remesh a triangle surface.
+
+points: (n, 3) float64 array of vertex positions.
+triangles: (m, 3) integer array of vertex indices (a soup is fine: exactly equal vertices are welded).
+vertices / edge_length: target size (one of them; default: defaults()['vertices']).
+mode: "isotropic" (with local density) or "anisotropic"; sets the defaults of nu and delta.
+sigma, delta, nu, eta, iterations, seed, threads, fill_holes: None = the default of the mode
+(see defaults(mode) and parameters()).
+progress: None or a callable (stage, iteration, total, energy); returning False cancels, which
+raises liftremesh.Cancelled.
+
+Returns (points, triangles, report): (N, 3) float64, (M, 3) int32, and a dict with the same
+fields as the command-line tool's JSON report. The GIL is released while it runs.
+Raises InvalidInput (a ValueError) for bad arrays or parameters, Cancelled, NumericalFailure,
+TopologyFailure (all subclasses of liftremesh.Error).)doc");
+    m.def("defaults", &parameter_defaults, py::arg("mode") = "isotropic",
+          "The default value of every parameter of remesh() for a mode, as a dict.");
+    m.def("parameters", &parameter_list,
+          "One dict per parameter: name, metavar, symbol (the paper's), default (as text), help.");
+}
