@@ -1,0 +1,42 @@
+"""LiftRemesh for FreeCAD: the macro API (works in FreeCADCmd, no GUI needed).
+
+    import LiftRemesh
+    mesh = LiftRemesh.remesh_shape(shape, vertices=4000)          # -> Mesh.Mesh
+    features = LiftRemesh.remesh_objects(doc, [doc.Box], edge_length=2.0)
+
+Parameters (all optional, by keyword): vertices or edge_length, mode ("isotropic" or
+"anisotropic"), sigma, delta, nu, eta, iterations, seed, threads, fill_holes, and for Part shapes
+linear_deflection (mm) and angular_deflection (degrees) of the tessellation. `defaults(mode)`
+lists them with their values; the command-line tool has the same names and defaults.
+Errors: ValueError for bad input (liftremesh.InvalidInput is one), LiftRemesh.Cancelled when a
+progress callback returns False, LiftRemesh.Error as the base of the remesher's errors.
+"""
+from . import native as _native
+from .meshing import Result, remesh_mesh
+from .parameters import defaults
+from .feature import remesh_objects
+
+_module = _native.load()
+Error = _module.Error
+Cancelled = _module.Cancelled
+InvalidInput = _module.InvalidInput
+
+__all__ = ["remesh_shape", "remesh_mesh", "remesh_objects", "make_fem_shell", "defaults",
+           "Result", "Error", "Cancelled", "InvalidInput"]
+
+
+def remesh_shape(shape, progress=None, **params):
+    """Remeshes a Part shape: tessellated as FreeCAD's STL export does (linear_deflection,
+    angular_deflection), then remeshed. Returns a Mesh.Mesh. See the module doc for `params`."""
+    from . import meshing, parameters
+
+    values = parameters.resolve(params)
+    mesh = meshing.tessellate(shape, values["linear_deflection"], values["angular_deflection"])
+    return meshing.remesh_mesh(mesh, progress=progress, **params).mesh
+
+
+def make_fem_shell(doc, mesh_obj, **kwargs):
+    """A Fem::FemMeshObject of linear triangles (shell elements) from a mesh object; see fem.py."""
+    from . import fem
+
+    return fem.make_fem_shell(doc, mesh_obj, **kwargs)

@@ -1,0 +1,189 @@
+"""The parametric remesh feature: a Mesh::Feature (Mesh::FeaturePython) that remembers its source
+and parameters and recomputes when either changes, and the document-level functions that create
+such features (one transaction: one undo step; a failure leaves the document as it was).
+"""
+import json
+
+import FreeCAD
+
+from . import meshing
+from . import parameters
+
+FEATURE_TYPE = "Mesh::FeaturePython"
+
+# Read-only properties that show the last result's quality: name -> (type, group, path in report, help)
+QUALITY_PROPERTIES = {
+    "KappaMin": ("App::PropertyFloat", ("output", "kappa_min"), "smallest triangle aspect ratio (Eq. 26, 1 = equilateral)"),
+    "KappaMean": ("App::PropertyFloat", ("output", "kappa_mean"), "mean triangle aspect ratio (Eq. 26)"),
+    "MinAngle": ("App::PropertyFloat", ("output", "min_angle_deg"), "smallest triangle angle (degrees)"),
+    "HausdorffRelative": ("App::PropertyFloat", ("hausdorff_relative",),
+                          "two-sided Hausdorff distance to the source / its bounding-box diagonal"),
+    "Report": ("App::PropertyString", (), "the full quality report (JSON, as the command-line tool writes it)"),
+}
+
+
+def _value(prop, value):
+    """A parameter as stored in a property (None edge length: 0 = use the vertex count)."""
+    if value is None:
+        return 0.0
+    return value
+
+
+class RemeshFeature:
+    """Proxy of a remeshed mesh: Source (link to a Part shape or a mesh) + parameter properties.
+    Its `execute` tessellates the source if it is a shape, remeshes and sets Mesh."""
+
+    def __init__(self, obj, mode="isotropic"):
+        obj.Proxy = self
+        self.add_properties(obj, mode)
+
+    @staticmethod
+    def add_properties(obj, mode="isotropic"):
+        helps = parameters.help_texts()
+        defaults = parameters.defaults(mode)
+        if "Source" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyLink", "Source", "Base", "the Part shape or mesh that is remeshed")
+        for name, (prop, kind, group) in parameters.PROPERTIES.items():
+            if prop in obj.PropertiesList:
+                continue
+            obj.addProperty(kind, prop, group, helps.get(name, ""))
+            if kind == "App::PropertyEnumeration":
+                setattr(obj, prop, list(parameters.MODES))
+            setattr(obj, prop, _value(prop, defaults[name]))
+        for prop, (kind, _, doc) in QUALITY_PROPERTIES.items():
+            if prop not in obj.PropertiesList:
+                obj.addProperty(kind, prop, "Quality", doc)
+                obj.setEditorMode(prop, 1)  # read-only
+
+    def onChanged(self, obj, prop):
+        # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.
+        if prop == "Mode" and "Restore" not in obj.State and "Nu" in obj.PropertiesList:
+            defaults = parameters.defaults(obj.Mode)
+            if obj.Nu != defaults["nu"] or obj.Delta != defaults["delta"]:
+                obj.Nu, obj.Delta = defaults["nu"], defaults["delta"]
+
+    def execute(self, obj):
+        if obj.Source is None:
+            raise ValueError("%s has no source to remesh" % obj.Label)
+        result = meshing.remesh_source(obj.Source, **params_of(obj))
+        apply_result(obj, result)
+
+    # FreeCAD 0.20 saves proxies with __getstate__/__setstate__, 0.21+ with dumps/loads.
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+
+def params_of(obj):
+    """The parameter dict stored in a feature's properties."""
+    values = {}
+    for name, (prop, kind, _) in parameters.PROPERTIES.items():
+        value = getattr(obj, prop)
+        if hasattr(value, "Value"):  # Quantity (Length, Angle)
+            value = value.Value
+        values[name] = value
+    if values["edge_length"] > 0:
+        values["vertices"] = None
+    else:
+        values["edge_length"] = None
+    return values
+
+
+def set_params(obj, params):
+    """Stores a (resolved) parameter dict in a feature's properties."""
+    values = parameters.resolve(params)
+    obj.Mode = values["mode"]  # first: a new mode resets nu and delta, set below
+    for name, (prop, _, _) in parameters.PROPERTIES.items():
+        if name != "mode":
+            setattr(obj, prop, _value(prop, values[name]))
+
+
+def apply_result(obj, result):
+    """Sets a feature's mesh and quality properties from a Result."""
+    obj.Mesh = result.mesh
+    for prop, (_, path, _) in QUALITY_PROPERTIES.items():
+        if prop == "Report":
+            obj.Report = json.dumps(result.report, indent=2)
+            continue
+        value = result.report
+        for key in path:
+            value = value[key]
+        setattr(obj, prop, float(value) if value is not None else 0.0)
+
+
+def create_feature(doc, source, params, result=None):
+    """Adds a remesh feature for `source` (no transaction of its own). With `result` (computed
+    beforehand, e.g. in a worker thread) its mesh is used as it is and the feature is not touched;
+    otherwise the feature is computed now. Returns the feature."""
+    obj = doc.addObject(FEATURE_TYPE, source.Name + "_Remesh")
+    RemeshFeature(obj, params.get("mode") or "isotropic")
+    obj.Label = source.Label + " (remeshed)"
+    set_params(obj, params)
+    obj.Source = source
+    if FreeCAD.GuiUp:
+        from .gui import view_provider
+
+        view_provider.ViewProviderRemesh(obj.ViewObject)
+    if result is None:
+        obj.recompute()
+        if not obj.isValid():
+            raise RuntimeError("%s could not be computed" % obj.Label)
+    else:
+        apply_result(obj, result)
+        obj.purgeTouched()
+    return obj
+
+
+def in_transaction(doc, name, work):
+    """Runs work() inside one undo transaction; on any error the transaction is aborted (the
+    document is as it was) and the error re-raised."""
+    doc.openTransaction(name)
+    try:
+        value = work()
+    except BaseException:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    return value
+
+
+def check_sources(doc, objects):
+    """ValueError unless `objects` is a non-empty list of this document's shapes or meshes."""
+    if doc is None:
+        raise ValueError("no document")
+    if not objects:
+        raise ValueError("nothing to remesh: select Part shapes or meshes")
+    for obj in objects:
+        if obj is None or obj.Document is not doc:
+            raise ValueError("%s is not in document %s" % (getattr(obj, "Label", obj), doc.Name))
+        if meshing.source_kind(obj) is None:
+            raise ValueError("%s is neither a Part shape nor a mesh" % obj.Label)
+
+
+def remesh_objects(doc, objects, progress=None, **params):
+    """Remeshes each of `objects` (Part shapes or meshes of `doc`) into a new parametric
+    Mesh::Feature named after it, in one undo step. Everything is computed before the document
+    changes, so any failure (bad object, remesh error, Cancelled) leaves it exactly as it was.
+    Returns the created features."""
+    check_sources(doc, objects)
+    parameters.resolve(params)  # bad parameters fail before any work
+    results = [meshing.remesh_source(obj, progress=progress, **params) for obj in objects]
+    return add_results(doc, objects, params, results)
+
+
+def add_results(doc, objects, params, results):
+    """Adds one feature per (source, precomputed result) in one transaction; returns them."""
+    def work():
+        created = [create_feature(doc, obj, params, result) for obj, result in zip(objects, results)]
+        doc.recompute()  # nothing to compute (purged), but leaves the document clean
+        return created
+
+    return in_transaction(doc, "Remesh", work)
