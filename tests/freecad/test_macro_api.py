@@ -1,0 +1,117 @@
+"""Macro API on real OpenCASCADE shapes: LiftRemesh.remesh_shape gives a closed, oriented mesh with
+the shape's Euler characteristic and the core issue's quality thresholds (kappa mean >= 0.90,
+kappa min >= 0.30, sharp-edge length within 2%, Hausdorff distance <= 0.5% of the diagonal), all
+measured here independently of LiftRemesh's own report (mesh_checks.py)."""
+import glob
+import math
+import os
+import sys
+import unittest
+
+import FreeCAD
+import Part
+
+import LiftRemesh
+import mesh_checks
+
+IDF_LIBS = os.path.join(FreeCAD.getResourceDir(), "Mod", "Idf", "Idflibs")
+SOURCE_DIR = os.environ.get("LIFTREMESH_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(mesh_checks.__file__)))))
+
+
+def box_with_hole():
+    """40 x 30 x 10 block with a 12 mm cylindrical through-hole: genus 1."""
+    box = Part.makeBox(40, 30, 10)
+    return box.cut(Part.makeCylinder(6, 10, FreeCAD.Vector(20, 15, 0))).removeSplitter()
+
+
+def filleted_bracket():
+    """The demo part (scripts/demo_bracket.py): fillets, chamfer, three holes, genus 3."""
+    sys.path.insert(0, os.path.join(SOURCE_DIR, "scripts"))
+    try:
+        import demo_bracket
+    finally:
+        sys.path.pop(0)
+    return demo_bracket.make_bracket(Part, FreeCAD.Vector)
+
+
+def step_part(name="TCMT1107_4.stp"):
+    """A STEP part FreeCAD's package ships (Mod/Idf/Idflibs), fused into one solid."""
+    path = os.path.join(IDF_LIBS, name)
+    shape = Part.read(path)
+    solids = shape.Solids
+    if len(solids) > 1:
+        shape = solids[0].multiFuse(solids[1:]).removeSplitter()
+    return shape
+
+
+class MacroApiTest(unittest.TestCase):
+    def check_remesh(self, shape, vertices):
+        shape_chi = mesh_checks.shape_euler_characteristic(shape)
+        mesh = LiftRemesh.remesh_shape(shape, vertices=vertices)
+        points, triangles = mesh_checks.arrays(mesh)
+        self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles), "not a closed oriented manifold")
+        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), shape_chi)
+        # outward: positive signed volume, equal to the solid's
+        a, b, c = (points[triangles[:, i]] for i in range(3))
+        volume = float((a * mesh_checks.np.cross(b, c)).sum() / 6.0)
+        self.assertAlmostEqual(volume / shape.Volume, 1.0, delta=0.02)
+        kappa = mesh_checks.kappa(points, triangles)
+        self.assertGreaterEqual(kappa.mean(), 0.90)
+        self.assertGreaterEqual(kappa.min(), 0.30)
+        sharp_shape = mesh_checks.shape_sharp_edge_length(shape)
+        sharp_mesh = mesh_checks.sharp_edge_length(points, triangles)
+        self.assertGreater(sharp_shape, 0.0)
+        self.assertAlmostEqual(sharp_mesh / sharp_shape, 1.0, delta=0.02)
+        # Hausdorff distance to the shape, through a fine tessellation of it (0.01 mm deflection)
+        fine = mesh_checks.arrays(__import__("MeshPart").meshFromShape(
+            Shape=shape, LinearDeflection=shape.BoundBox.DiagonalLength * 1e-4,
+            AngularDeflection=math.radians(5), Relative=False))
+        distance = mesh_checks.hausdorff(points, triangles, *fine)
+        self.assertLessEqual(distance / shape.BoundBox.DiagonalLength, 0.005)
+        return points, triangles
+
+    def test_box_with_cylindrical_hole(self):
+        shape = box_with_hole()
+        self.assertEqual(mesh_checks.shape_euler_characteristic(shape), 0)
+        self.check_remesh(shape, 3000)
+
+    def test_filleted_bracket(self):
+        shape = filleted_bracket()
+        self.assertEqual(mesh_checks.shape_euler_characteristic(shape), -4)
+        self.check_remesh(shape, 6000)
+
+    @unittest.skipUnless(glob.glob(os.path.join(IDF_LIBS, "*.stp")), "FreeCAD's Idflibs STEP files not found")
+    def test_step_part_from_freecad_idflibs(self):
+        shape = step_part()
+        self.assertTrue(shape.isValid())
+        self.check_remesh(shape, 4000)
+
+    def test_parameters_reach_the_remesher(self):
+        shape = box_with_hole()
+        coarse = LiftRemesh.remesh_shape(shape, vertices=400)
+        self.assertLessEqual(abs(coarse.CountPoints - 400), 20)
+        by_length = LiftRemesh.remesh_shape(shape, edge_length=3.0)
+        expected = shape.Area / (math.sqrt(3) / 2 * 3.0 ** 2)
+        self.assertAlmostEqual(by_length.CountPoints / expected, 1.0, delta=0.05)
+
+    def test_bad_input_raises_value_error(self):
+        with self.assertRaisesRegex(ValueError, "unknown parameter 'vertex'"):
+            LiftRemesh.remesh_shape(box_with_hole(), vertex=100)
+        with self.assertRaisesRegex(ValueError, "no face"):
+            LiftRemesh.remesh_shape(Part.Shape())
+        with self.assertRaisesRegex(ValueError, "no face"):
+            LiftRemesh.remesh_shape(Part.makeLine(FreeCAD.Vector(), FreeCAD.Vector(1, 0, 0)))
+        with self.assertRaisesRegex(ValueError, "sigma"):
+            LiftRemesh.remesh_shape(box_with_hole(), sigma=0.2)
+        with self.assertRaisesRegex(ValueError, "linear_deflection"):
+            LiftRemesh.remesh_shape(box_with_hole(), linear_deflection=0)
+
+    def test_cancel_from_progress(self):
+        with self.assertRaises(LiftRemesh.Cancelled):
+            LiftRemesh.remesh_shape(box_with_hole(), vertices=500,
+                                    progress=lambda stage, i, n, e: stage != "optimize" or i < 3)
+
+
+if __name__ == "__main__":
+    unittest.main()
