@@ -1,11 +1,12 @@
 """The parametric remesh feature: a Mesh::Feature (Mesh::FeaturePython) that remembers its source
 and parameters and recomputes when either changes, and the document-level functions that create
-such features (one transaction: one undo step; a failure leaves the document as it was).
+such features (one undo step; a failure leaves the document as it was: document.py).
 """
 import json
 
 import FreeCAD
 
+from . import document
 from . import meshing
 from . import parameters
 
@@ -143,16 +144,9 @@ def create_feature(doc, source, params, result=None):
 
 
 def in_transaction(doc, name, work):
-    """Runs work() inside one undo transaction; on any error the transaction is aborted (the
-    document is as it was) and the error re-raised."""
-    doc.openTransaction(name)
-    try:
-        value = work()
-    except BaseException:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
-    return value
+    """Returns work(), run as one document change (document.document_change)."""
+    with document.document_change(doc, name):
+        return work()
 
 
 def check_sources(doc, objects):
@@ -181,9 +175,7 @@ def remesh_objects(doc, objects, progress=None, **params):
 
 def add_results(doc, objects, params, results):
     """Adds one feature per (source, precomputed result) in one transaction; returns them."""
-    def work():
+    with document.document_change(doc, "Remesh"):
         created = [create_feature(doc, obj, params, result) for obj, result in zip(objects, results)]
         doc.recompute()  # nothing to compute (purged), but leaves the document clean
-        return created
-
-    return in_transaction(doc, "Remesh", work)
+    return created

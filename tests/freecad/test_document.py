@@ -1,0 +1,150 @@
+"""Document behaviour of the macro API: features created named after their sources, one undo
+removes them, a failure of any kind leaves the document exactly as it was, and the feature is
+parametric (recomputes when its source or parameters change, survives save and reload)."""
+import os
+import tempfile
+import unittest
+
+import FreeCAD
+import Part
+
+import LiftRemesh
+from LiftRemesh import feature
+
+
+def snapshot(doc):
+    """What must not change when an operation fails: objects, their labels, types, states and
+    shapes/meshes, and the undo stack."""
+    objects = []
+    for obj in doc.Objects:
+        geometry = None
+        if hasattr(obj, "Shape"):
+            geometry = ("shape", obj.Shape.hashCode() if not obj.Shape.isNull() else None)
+        if hasattr(obj, "Mesh"):
+            geometry = ("mesh", obj.Mesh.CountPoints, obj.Mesh.CountFacets, round(obj.Mesh.Area, 9))
+        objects.append((obj.Name, obj.Label, obj.TypeId, tuple(obj.State), geometry))
+    return objects, doc.UndoNames, doc.RedoNames
+
+
+def block_with_hole(doc, name="Block"):
+    obj = doc.addObject("Part::Feature", name)
+    obj.Shape = Part.makeBox(40, 30, 10).cut(Part.makeCylinder(6, 10, FreeCAD.Vector(20, 15, 0)))
+    return obj
+
+
+class DocumentTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("LiftRemeshDocumentTest")
+        self.doc.UndoMode = 1
+        self.block = block_with_hole(self.doc)
+        self.doc.recompute()
+        self.doc.clearUndos()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def test_objects_created_and_one_undo_removes_them(self):
+        cylinder = self.doc.addObject("Part::Cylinder", "Rod")
+        self.doc.recompute()
+        self.doc.clearUndos()
+        before = snapshot(self.doc)
+        created = LiftRemesh.remesh_objects(self.doc, [self.block, cylinder], vertices=600)
+        self.assertEqual([o.Name for o in created], ["Block_Remesh", "Rod_Remesh"])
+        for obj, source in zip(created, (self.block, cylinder)):
+            self.assertTrue(obj.isDerivedFrom("Mesh::Feature"))
+            self.assertIs(obj.Source, source)
+            self.assertEqual(obj.Vertices, 600)
+            self.assertGreater(obj.Mesh.CountFacets, 1000)
+            self.assertTrue(obj.Mesh.isSolid())
+            self.assertGreater(obj.KappaMin, 0.3)
+            self.assertFalse(obj.isValid() is False)
+            self.assertNotIn("Touched", obj.State)  # computed once, not again on recompute
+        self.assertEqual(self.doc.UndoNames, ["Remesh"])
+        self.doc.undo()
+        self.assertEqual(snapshot(self.doc)[0], before[0])
+        self.doc.redo()
+        self.assertEqual(len(self.doc.Objects), 4)
+
+    def test_mesh_source_is_remeshed(self):
+        source = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=500)[0]
+        again = LiftRemesh.remesh_objects(self.doc, [source], vertices=800)[0]
+        self.assertEqual(again.Name, "Block_Remesh_Remesh")
+        self.assertAlmostEqual(again.Mesh.CountPoints, 800, delta=20)
+        self.assertAlmostEqual(again.Mesh.Volume / source.Mesh.Volume, 1.0, delta=0.02)
+
+    def test_failures_leave_the_document_as_it_was(self):
+        empty = self.doc.addObject("Part::Feature", "Empty")
+        sheet = self.doc.addObject("App::FeaturePython", "NotAShape")
+        self.doc.recompute()
+        self.doc.clearUndos()
+        before = snapshot(self.doc)
+        failures = [
+            ([], {}, ValueError, "nothing to remesh"),
+            ([empty], {}, ValueError, "empty shape"),
+            ([sheet], {}, ValueError, "neither a Part shape nor a mesh"),
+            ([self.block, empty], {}, ValueError, "Empty"),             # the good one is not added
+            ([self.block], {"sigma": 0.5}, ValueError, "sigma"),
+            ([self.block], {"vertices": 2}, ValueError, "vertices"),
+            ([self.block], {"mode": "wobbly"}, ValueError, "mode"),
+            ([self.block], {"linear_deflection": -1}, ValueError, "linear_deflection"),
+            ([self.block], {"progress": lambda stage, i, n, e: stage != "optimize" or i < 2},
+             LiftRemesh.Cancelled, "cancel"),
+        ]
+        for objects, params, error, words in failures:
+            with self.subTest(words=words):
+                with self.assertRaisesRegex(error, words):
+                    LiftRemesh.remesh_objects(self.doc, objects, vertices=params.pop("vertices", 300), **params)
+                self.assertEqual(snapshot(self.doc), before)
+
+    def test_failure_while_adding_aborts_the_transaction(self):
+        import MeshPart
+
+        result = LiftRemesh.remesh_mesh(MeshPart.meshFromShape(self.block.Shape, 0.1, 0.5), vertices=300)
+        for undo_mode in (1, 0):  # with undo off (FreeCADCmd's default) the added objects are removed
+            with self.subTest(undo_mode=undo_mode):
+                self.doc.UndoMode = undo_mode
+                before = snapshot(self.doc)
+                with self.assertRaises(AttributeError):
+                    # the second "result" has no mesh: adding fails after the first feature was added
+                    feature.add_results(self.doc, [self.block, self.block], {"vertices": 300}, [result, object()])
+                self.assertEqual(snapshot(self.doc), before)
+
+    def test_feature_recomputes_when_source_or_parameters_change(self):
+        obj = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=500)[0]
+        self.assertAlmostEqual(obj.Mesh.BoundBox.ZMax, 10.0, delta=0.05)
+        self.block.Shape = Part.makeBox(40, 30, 25)  # the source changes: no hole, taller
+        self.doc.recompute()
+        self.assertAlmostEqual(obj.Mesh.BoundBox.ZMax, 25.0, delta=0.05)
+        self.assertTrue(obj.Mesh.isSolid())
+        obj.Vertices = 900
+        self.doc.recompute()
+        self.assertAlmostEqual(obj.Mesh.CountPoints, 900, delta=20)
+        obj.Mode = "anisotropic"  # brings the mode's nu and delta, as --mode does
+        self.assertEqual((obj.Nu, obj.Delta), (0.05, 0.0))
+        # a source that can no longer be remeshed: the feature reports an error, keeps its mesh
+        points = obj.Mesh.CountPoints
+        self.block.Shape = Part.Shape()
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertEqual(obj.Mesh.CountPoints, points)
+
+    def test_feature_survives_save_and_reload(self):
+        obj = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=400)[0]
+        facets = obj.Mesh.CountFacets
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "remeshed.FCStd")
+            self.doc.saveAs(path)
+            name = self.doc.Name
+            FreeCAD.closeDocument(name)
+            self.doc = FreeCAD.openDocument(path)
+            obj = self.doc.getObject("Block_Remesh")
+            self.assertIsInstance(obj.Proxy, feature.RemeshFeature)
+            self.assertEqual(obj.Mesh.CountFacets, facets)
+            self.assertIs(obj.Source, self.doc.getObject("Block"))
+            obj.Vertices = 700
+            self.doc.recompute()
+            self.assertAlmostEqual(obj.Mesh.CountPoints, 700, delta=20)
+
+
+if __name__ == "__main__":
+    unittest.main()
