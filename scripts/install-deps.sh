@@ -13,8 +13,10 @@ packages=(
   libgtest-dev      # C++ tests
   pybind11-dev      # Python module (native/python)
   python3-numpy     # Python module, scripts
+  python3-scipy     # FreeCAD tests: kd-trees for the exact Hausdorff distance (tests/freecad/mesh_checks.py)
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
+  calculix-ccx      # CalculiX solver: the FEM hand-off test runs a static shell analysis
 )
 
 installed() {
