@@ -4,6 +4,8 @@
 #   make test    build and run the C++ test suite
 #   make bench   time the CLI on ../shared/meshes, print a markdown table
 #   make build   configure and build in build/ (Release)
+#   make install link the FreeCAD add-on into FreeCAD's user Mod folder (after building)
+#   make uninstall remove that link
 #   make clean   remove build/ and out/
 
 BUILD_DIR ?= build
@@ -13,7 +15,7 @@ JOBS      ?= 2
 PYTHON    ?= /usr/bin/python3
 CLI       := $(BUILD_DIR)/bin/liftremesh
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench install uninstall clean
 
 all: build
 
@@ -37,6 +39,12 @@ demo: deps build
 
 bench: deps build
 	$(PYTHON) scripts/bench.py --cli $(CLI) --out $(OUT_DIR)/bench
+
+install: deps build
+	bash scripts/install-addon.sh
+
+uninstall:
+	bash scripts/install-addon.sh --uninstall
 
 clean:
 	rm -rf $(BUILD_DIR) $(OUT_DIR)
