@@ -24,9 +24,10 @@ QUALITY_PROPERTIES = {
 
 
 def _value(prop, value):
-    """A parameter as stored in a property (None edge length: 0 = use the vertex count)."""
+    """A parameter as stored in its property: an unset size (None) is 0, an int for Vertices and
+    a length for EdgeLength (0 = use the other one)."""
     if value is None:
-        return 0.0
+        return 0 if prop == "Vertices" else 0.0
     return value
 
 
@@ -95,6 +96,8 @@ def params_of(obj):
         values["vertices"] = None
     else:
         values["edge_length"] = None
+        if values["vertices"] == 0:
+            values["vertices"] = None  # neither set: the default count
     return values
 
 

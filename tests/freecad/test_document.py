@@ -65,6 +65,15 @@ class DocumentTest(unittest.TestCase):
         self.doc.redo()
         self.assertEqual(len(self.doc.Objects), 4)
 
+    def test_edge_length_target_is_stored_and_used(self):
+        obj = LiftRemesh.remesh_objects(self.doc, [self.block], edge_length=2.0)[0]
+        self.assertEqual((obj.Vertices, obj.EdgeLength.Value), (0, 2.0))
+        expected = self.block.Shape.Area / (3 ** 0.5 / 2 * 2.0 ** 2)
+        self.assertAlmostEqual(obj.Mesh.CountPoints / expected, 1.0, delta=0.05)
+        obj.EdgeLength = 3.0
+        self.doc.recompute()
+        self.assertAlmostEqual(obj.Mesh.CountPoints / (expected * 4 / 9), 1.0, delta=0.05)
+
     def test_mesh_source_is_remeshed(self):
         source = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=500)[0]
         again = LiftRemesh.remesh_objects(self.doc, [source], vertices=800)[0]

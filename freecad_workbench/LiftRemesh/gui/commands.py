@@ -1,0 +1,105 @@
+"""The workbench's commands, registered when this module is imported (the workbench imports it
+when it is activated):
+
+  LiftRemesh_Remesh    remesh the selected Part shapes and meshes (task panel)
+  LiftRemesh_FemShell  FEM mesh of linear triangles (shell elements) from the selected meshes
+"""
+import FreeCAD
+import FreeCADGui
+
+from .. import feature
+from .. import meshing
+from . import common
+
+REMESH = "LiftRemesh_Remesh"
+FEM_SHELL = "LiftRemesh_FemShell"
+NAMES = (REMESH, FEM_SHELL)
+
+
+def no_task_dialog():
+    """False while a task dialog (ours or another) is open: one at a time."""
+    return not FreeCADGui.Control.activeDialog()
+
+
+def selected_sources():
+    """The selected objects that can be remeshed (Part shapes, meshes)."""
+    return [obj for obj in common.selected_objects() if meshing.source_kind(obj) is not None]
+
+
+def selected_meshes():
+    """The selected mesh objects (Mesh::Feature and derived)."""
+    return [obj for obj in common.selected_objects() if obj.isDerivedFrom("Mesh::Feature")]
+
+
+class CommandRemesh:
+    """Opens the Remesh task panel for the selected Part shapes and meshes."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": common.icon_path("LiftRemesh_Remesh.svg"),
+            "MenuText": "Remesh",
+            "ToolTip": "Remesh the selected Part shapes (tessellated as the STL export does) and meshes "
+                       "into well-shaped triangle meshes that keep the sharp edges. Adds one mesh per "
+                       "source; the sources are not changed.",
+        }
+
+    def IsActive(self):
+        return no_task_dialog() and common.active_document() is not None and bool(selected_sources())
+
+    def Activated(self):
+        from . import task_panel
+
+        objects = common.selected_objects()
+        try:
+            panel = task_panel.RemeshTaskPanel(objects)
+        except Exception as error:
+            common.report_error("Cannot remesh the selection: %s" % common.describe_error(error))
+            return
+        try:
+            FreeCADGui.Control.showDialog(panel)
+        except Exception as error:  # another task dialog is open
+            common.report_error("Cannot open the Remesh panel: %s" % common.describe_error(error))
+
+
+class CommandFemShell:
+    """Makes a Fem::FemMeshObject of linear triangles (shell elements) from each selected mesh."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": common.icon_path("LiftRemesh_FemShell.svg"),
+            "MenuText": "FEM shell mesh from remeshed mesh",
+            "ToolTip": "Make a FEM mesh of linear triangles (shell elements) from each selected mesh, "
+                       "e.g. a remeshed one, in one undo step.",
+        }
+
+    def IsActive(self):
+        return no_task_dialog() and common.active_document() is not None and bool(selected_meshes())
+
+    def Activated(self):
+        import LiftRemesh
+
+        doc = common.active_document()
+        meshes = selected_meshes()
+        if doc is None or not meshes:
+            common.report_error("Select one or more mesh objects to make FEM shell meshes of.")
+            return
+        def work():
+            created = [LiftRemesh.make_fem_shell(doc, obj) for obj in meshes]
+            for obj in meshes:  # the FEM mesh lies on it; undoing shows it again
+                if obj.ViewObject is not None:
+                    obj.ViewObject.hide()
+            return created
+
+        try:
+            created = feature.in_transaction(doc, "FEM shell mesh", work)
+            doc.recompute()
+        except Exception as error:
+            common.report_error("FEM shell mesh failed, the document is unchanged: %s"
+                                % common.describe_error(error))
+            return
+        for obj in created:
+            FreeCAD.Console.PrintMessage("LiftRemesh: FEM shell mesh %s added\n" % getattr(obj, "Label", obj))
+
+
+FreeCADGui.addCommand(REMESH, CommandRemesh())
+FreeCADGui.addCommand(FEM_SHELL, CommandFemShell())

@@ -1,0 +1,358 @@
+"""The workbench in FreeCAD's GUI, run headless:
+
+    LIFTREMESH_TESTS=test_gui QT_QPA_PLATFORM=offscreen freecadcmd tests/freecad/run_tests.py
+
+The main window is shown offscreen; the workbench is registered by exec'ing InitGui.py as FreeCAD
+does (no __file__, a namespace of its own), unless FreeCAD already loaded the add-on. There the
+task dialog is not tracked by Gui.Control, so the tests drive the panel's accept() and reject()
+and wait for the job with panel.wait(). Message boxes are recorded instead of shown.
+"""
+import os
+import tempfile
+import time
+import unittest
+
+if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # read when the GUI starts
+
+import FreeCAD
+import FreeCADGui
+import Mesh
+import Part
+
+from LiftRemesh import native
+
+WORKBENCH = "LiftRemeshWorkbench"
+REMESH = "LiftRemesh_Remesh"
+FEM_SHELL = "LiftRemesh_FemShell"
+TIMEOUT = 300  # seconds a small remesh may take on a slow machine before the test fails
+
+
+def setUpModule():
+    if not FreeCAD.GuiUp:
+        FreeCADGui.showMainWindow()
+    if WORKBENCH not in FreeCADGui.listWorkbenches():
+        path = os.path.join(native.ADDON_ROOT, "freecad_workbench", "InitGui.py")
+        with open(path, encoding="utf-8") as f:
+            code = compile(f.read(), path, "exec")
+        exec(code, {"__builtins__": __builtins__}, {})  # as FreeCAD runs it: no __file__
+    FreeCADGui.activateWorkbench(WORKBENCH)
+
+
+def process_events():
+    from PySide import QtGui
+
+    QtGui.QApplication.processEvents()
+
+
+class MessageBoxes:
+    """Replaces QMessageBox's static functions by recorders, so no modal box blocks a test."""
+
+    KINDS = ("critical", "warning", "information", "question")
+
+    def __init__(self):
+        from PySide import QtGui
+
+        self.box = QtGui.QMessageBox
+        self.shown = []  # (kind, title, text)
+        self.saved = {kind: getattr(self.box, kind) for kind in self.KINDS}
+        for kind in self.KINDS:
+            setattr(self.box, kind, staticmethod(self._recorder(kind)))
+
+    def _recorder(self, kind):
+        def record(parent, title, text, *args, **kwargs):
+            self.shown.append((kind, title, text))
+            return self.box.Ok
+
+        return record
+
+    def restore(self):
+        for kind, function in self.saved.items():
+            setattr(self.box, kind, function)
+
+    def texts(self, kind):
+        return [text for k, _, text in self.shown if k == kind]
+
+
+def add_box_with_hole(doc, name="Block"):
+    """A Part::Feature: a 20 x 20 x 10 block with a through hole (genus 1)."""
+    obj = doc.addObject("Part::Feature", name)
+    obj.Shape = Part.makeBox(20, 20, 10).cut(Part.makeCylinder(4, 10, FreeCAD.Vector(10, 10, 0)))
+    doc.recompute()
+    return obj
+
+
+class GuiTestCase(unittest.TestCase):
+    """A new document, active in the GUI, and recorded message boxes."""
+
+    def setUp(self):
+        # Hidden: no 3D view, whose deletion crashes Coin on the offscreen platform (no OpenGL).
+        # FreeCAD makes one anyway when events are processed with a selection in the document:
+        # tests clear their selection before they wait for a job (remesh()).
+        self.doc = FreeCAD.newDocument("LiftRemeshGuiTest", hidden=True)
+        FreeCAD.setActiveDocument(self.doc.Name)
+        FreeCADGui.Selection.clearSelection()
+        self.boxes = MessageBoxes()
+        self.panel = None
+
+    def tearDown(self):
+        if self.panel is not None and self.panel.running():
+            self.panel.cancel()
+            self.panel.wait(TIMEOUT)
+        self.boxes.restore()
+        FreeCADGui.Selection.clearSelection()
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def names(self):
+        return sorted(obj.Name for obj in self.doc.Objects)
+
+    def select(self, *objects):
+        FreeCADGui.Selection.clearSelection()
+        for obj in objects:
+            FreeCADGui.Selection.addSelection(obj)
+
+    def make_panel(self, sources, vertices=800, **kwargs):
+        from LiftRemesh.gui import task_panel
+
+        self.panel = task_panel.RemeshTaskPanel(sources, **kwargs)
+        self.panel.set_vertices(vertices)
+        return self.panel
+
+    def remesh(self, source, vertices=800):
+        """Runs the panel on `source` to the end; returns the created feature."""
+        FreeCADGui.Selection.clearSelection()  # see setUp
+        panel = self.make_panel([source], vertices)
+        self.assertFalse(panel.accept())  # the panel stays open while the job runs
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+        self.assertEqual(len(panel.created), 1)
+        return panel.created[0]
+
+
+class WorkbenchTest(GuiTestCase):
+    def test_workbench_registers_and_activates_with_its_commands(self):
+        self.assertIn(WORKBENCH, FreeCADGui.listWorkbenches())
+        workbench = FreeCADGui.getWorkbench(WORKBENCH)
+        self.assertEqual(workbench.MenuText, "Remesh")
+        self.assertTrue(os.path.isfile(workbench.Icon), workbench.Icon)
+        FreeCADGui.activateWorkbench(WORKBENCH)
+        self.assertEqual(FreeCADGui.activeWorkbench().name(), WORKBENCH)
+        self.assertIn("Remesh", workbench.listToolbars())
+        self.assertIn("Remesh", workbench.listMenus())
+        commands = FreeCADGui.listCommands()
+        for name in (REMESH, FEM_SHELL):
+            self.assertIn(name, commands)
+        from LiftRemesh.gui import commands as gui_commands
+
+        for command in (gui_commands.CommandRemesh(), gui_commands.CommandFemShell()):
+            self.assertTrue(os.path.isfile(command.GetResources()["Pixmap"]))
+
+    def test_remesh_command_is_active_only_with_a_shape_or_mesh_selected(self):
+        block = add_box_with_hole(self.doc)
+        group = self.doc.addObject("App::DocumentObjectGroup", "Group")
+        self.assertFalse(FreeCADGui.isCommandActive(REMESH))
+        self.select(group)
+        self.assertFalse(FreeCADGui.isCommandActive(REMESH))
+        self.select(block)
+        self.assertTrue(FreeCADGui.isCommandActive(REMESH))
+        self.assertFalse(FreeCADGui.isCommandActive(FEM_SHELL))
+        mesh = self.doc.addObject("Mesh::Feature", "Mesh")
+        mesh.Mesh = Mesh.createSphere(5.0, 30)
+        self.select(mesh)
+        self.assertTrue(FreeCADGui.isCommandActive(REMESH))
+        self.assertTrue(FreeCADGui.isCommandActive(FEM_SHELL))
+
+    def test_unavailable_commands_explain_why(self):
+        # What the workbench registers when the compiled module cannot be imported.
+        name = "LiftRemeshTest_Unavailable"
+        FreeCADGui.getWorkbench(WORKBENCH).register_unavailable([name], "no module liftremesh", "")
+        self.assertIn(name, FreeCADGui.listCommands())
+        FreeCADGui.runCommand(name)
+        self.assertEqual(self.boxes.texts("critical"), ["no module liftremesh"])
+
+
+class TaskPanelTest(GuiTestCase):
+    def test_panel_shows_the_module_defaults_and_mode_sets_nu_and_delta(self):
+        from LiftRemesh import parameters
+
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block])
+        iso, aniso = parameters.defaults("isotropic"), parameters.defaults("anisotropic")
+        values = panel.params()
+        for name in ("sigma", "delta", "nu", "iterations", "linear_deflection", "angular_deflection"):
+            self.assertAlmostEqual(values[name], iso[name], msg=name)
+        self.assertEqual((values["vertices"], values["edge_length"]), (800, None))
+        mode = panel._widget("mode")
+        mode.setCurrentIndex(mode.findData("anisotropic"))
+        values = panel.params()
+        self.assertEqual(values["mode"], "anisotropic")
+        self.assertAlmostEqual(values["nu"], aniso["nu"])
+        self.assertAlmostEqual(values["delta"], aniso["delta"])
+        panel._widget("edge_length_radio").setChecked(True)
+        values = panel.params()
+        self.assertIsNone(values["vertices"])
+        self.assertGreater(values["edge_length"], 0.0)
+        self.assertTrue(panel._widget("mode").toolTip())
+
+    def test_accept_inserts_one_mesh_feature_and_one_undo_removes_it(self):
+        block = add_box_with_hole(self.doc)
+        shape, volume, area = block.Shape, block.Shape.Volume, block.Shape.Area
+        before = self.names()
+        undo_count = self.doc.UndoCount
+        feature = self.remesh(block)
+
+        added = sorted(set(self.names()) - set(before))
+        self.assertEqual(added, [feature.Name])
+        self.assertTrue(feature.isDerivedFrom("Mesh::Feature"))
+        self.assertEqual(feature.Mesh.CountPoints, self.panel.results[0].report["output"]["vertices"])
+        self.assertGreater(feature.Mesh.CountFacets, 1000)
+        self.assertIs(feature.Source, block)
+        self.assertTrue(block.Shape.isEqual(shape))  # the source is untouched
+        self.assertAlmostEqual(block.Shape.Volume, volume)
+        self.assertAlmostEqual(block.Shape.Area, area)
+        self.assertNotIn("Touched", block.State)
+        self.assertEqual(self.doc.UndoCount, undo_count + 1)
+        self.assertEqual(self.boxes.shown, [])
+        # what the user sees: the report, the triangles, the source hidden, Close only
+        self.assertFalse(self.panel._widget("report_group").isHidden())
+        self.assertIn("κ min", self.panel._widget("report_text").text())
+        self.assertEqual(len(self.panel.histogram.output_counts), 10)
+        self.assertEqual(feature.ViewObject.DisplayMode, "Flat Lines")
+        self.assertEqual(type(feature.ViewObject.Proxy).__name__, "ViewProviderRemesh")
+        self.assertTrue(os.path.isfile(feature.ViewObject.Proxy.getIcon()))
+        self.assertFalse(block.ViewObject.Visibility)
+        self.assertTrue(self.panel.accept())  # OK again closes the panel
+
+        self.doc.undo()
+        self.assertEqual(self.names(), before)
+        self.assertTrue(block.ViewObject.Visibility)
+
+    def test_edge_length_as_the_target_size(self):
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block])
+        panel._widget("edge_length_radio").setChecked(True)
+        panel._widget("edge_length").setValue(1.5)
+        panel.accept()
+        outcome = panel.wait(TIMEOUT)
+        self.assertEqual(outcome, "done", self.boxes.shown)
+        feature = panel.created[0]
+        self.assertAlmostEqual(feature.EdgeLength.Value, 1.5)
+        self.assertEqual(feature.Vertices, 0)
+        self.assertGreater(feature.Mesh.CountPoints, 100)
+
+    def test_a_remeshed_mesh_saves_and_reloads(self):
+        sphere = self.doc.addObject("Mesh::Feature", "Sphere")
+        sphere.Mesh = Mesh.createSphere(5.0, 40)
+        feature = self.remesh(sphere, vertices=500)
+        self.assertEqual(feature.Mesh.CountPoints, 500)
+        path = os.path.join(tempfile.mkdtemp(prefix="liftremesh_gui_"), "remeshed.FCStd")
+        self.doc.saveAs(path)
+        name = feature.Name
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path, True)  # hidden, as in setUp
+        restored = self.doc.getObject(name)
+        self.assertEqual(restored.Mesh.CountPoints, 500)
+        self.assertEqual(type(restored.ViewObject.Proxy).__name__, "ViewProviderRemesh")
+        self.assertEqual(restored.Source.Name, "Sphere")
+
+    def test_editing_a_feature_replaces_its_mesh_in_one_undo_step(self):
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=800)
+        names = self.names()
+        panel = self.make_panel([block], vertices=500, feature=feature)
+        self.assertFalse(panel.accept())
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+        self.assertEqual(self.names(), names)  # no new object
+        self.assertEqual(feature.Mesh.CountPoints, 500)
+        self.assertEqual(feature.Vertices, 500)
+        self.doc.undo()
+        self.assertEqual(feature.Mesh.CountPoints, 800)
+
+    def test_cancel_during_a_run_leaves_the_document_unchanged(self):
+        block = add_box_with_hole(self.doc)
+        before, undo_count = self.names(), self.doc.UndoCount
+        panel = self.make_panel([block], vertices=3000)
+        panel._widget("iterations").setValue(100000)  # long enough to cancel in the middle
+        panel.accept()
+        deadline = time.monotonic() + TIMEOUT
+        while panel.job.progress.stage != "optimize" or panel.job.progress.iteration < 2:
+            self.assertLess(time.monotonic(), deadline, "the optimisation did not start")
+            process_events()
+            time.sleep(0.02)
+        self.assertFalse(panel.accept())  # OK is refused while it runs
+        self.assertFalse(panel.reject())  # Cancel stops the job; the panel closes when it has
+        self.assertEqual(panel.wait(TIMEOUT), "cancelled")
+        self.assertEqual(self.names(), before)
+        self.assertEqual(self.doc.UndoCount, undo_count)
+        self.assertEqual(len(self.boxes.texts("warning")), 1)
+        self.assertIn("unchanged", self.boxes.texts("warning")[0])
+
+
+class FailureTest(GuiTestCase):
+    def test_a_non_shape_in_the_selection_is_refused(self):
+        block = add_box_with_hole(self.doc)
+        group = self.doc.addObject("App::DocumentObjectGroup", "Folder")
+        before = self.names()
+        self.select(block, group)
+        self.assertTrue(FreeCADGui.isCommandActive(REMESH))
+        FreeCADGui.runCommand(REMESH)
+        errors = self.boxes.texts("critical")
+        self.assertEqual(len(errors), 1, self.boxes.shown)
+        self.assertIn("Folder", errors[0])
+        self.assertEqual(self.names(), before)
+
+    def test_an_empty_shape_is_refused(self):
+        empty = self.doc.addObject("Part::Feature", "Wire")
+        empty.Shape = Part.makeLine(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(10, 0, 0))
+        self.doc.recompute()
+        before = self.names()
+        self.select(empty)
+        self.assertTrue(FreeCADGui.isCommandActive(REMESH))
+        FreeCADGui.runCommand(REMESH)
+        errors = self.boxes.texts("critical")
+        self.assertEqual(len(errors), 1, self.boxes.shown)
+        self.assertIn("Wire", errors[0])
+        self.assertEqual(self.names(), before)
+
+    def test_a_shape_emptied_before_ok_fails_and_the_panel_stays_open(self):
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block])
+        block.Shape = Part.Shape()
+        before = self.names()
+        self.assertFalse(panel.accept())
+        self.assertEqual(panel.outcome, "failed")
+        self.assertFalse(panel.running())
+        self.assertEqual(len(self.boxes.texts("critical")), 1)
+        self.assertEqual(self.names(), before)
+
+    def test_a_remesh_error_in_the_worker_is_reported_and_nothing_added(self):
+        flat = self.doc.addObject("Mesh::Feature", "Flat")
+        flat.Mesh = Mesh.Mesh([[FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(1, 0, 0), FreeCAD.Vector(2, 0, 0)]])
+        self.assertEqual(flat.Mesh.CountFacets, 1)
+        before, undo_count = self.names(), self.doc.UndoCount
+        panel = self.make_panel([flat])
+        panel.accept()
+        self.assertEqual(panel.wait(TIMEOUT), "failed")
+        errors = self.boxes.texts("critical")
+        self.assertEqual(len(errors), 1, self.boxes.shown)
+        self.assertIn("positive area", errors[0])
+        self.assertEqual(self.names(), before)
+        self.assertEqual(self.doc.UndoCount, undo_count)
+
+
+class FemShellTest(GuiTestCase):
+    def test_fem_shell_command_on_a_remeshed_mesh(self):
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        before = set(self.names())
+        self.select(feature)
+        self.assertTrue(FreeCADGui.isCommandActive(FEM_SHELL))
+        FreeCADGui.runCommand(FEM_SHELL)
+        FreeCADGui.Selection.clearSelection()
+        self.assertEqual(self.boxes.shown, [])
+        added = [self.doc.getObject(name) for name in set(self.names()) - before]
+        self.assertEqual([obj.TypeId for obj in added], ["Fem::FemMeshObject"])
+        self.assertEqual(added[0].FemMesh.FaceCount, feature.Mesh.CountFacets)
+        self.assertFalse(feature.ViewObject.Visibility)  # the FEM mesh lies on it
+        self.doc.undo()  # one step
+        self.assertEqual(set(self.names()), before)
+        self.assertTrue(feature.ViewObject.Visibility)
