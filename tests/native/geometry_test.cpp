@@ -43,9 +43,43 @@ TEST(Geometry, ClosestPointOnTriangleRegions) {
     EXPECT_TRUE(closest_point_on_triangle({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));
 }
 
+TEST(Geometry, ClosestPointOnSegmentRegions) {
+    const Eigen::Vector3d a(0.1, 0.7, -0.3), b(2.3, -1.9, 0.6);
+    EXPECT_EQ(closest_point_on_segment({-5, 9, -4}, a, b), a); // beyond an end: the end point itself
+    EXPECT_EQ(closest_point_on_segment({9, -9, 5}, a, b), b);
+    const Eigen::Vector3d mid = 0.5 * (a + b), off = (b - a).cross(Eigen::Vector3d(0, 0, 1));
+    const Eigen::Vector3d p = closest_point_on_segment(mid + 0.5 * off, a, b);
+    EXPECT_NEAR((p - mid).norm(), 0.0, 1e-14);
+    EXPECT_EQ(closest_point_on_segment({1, 1, 1}, a, a), a); // degenerate segment
+}
+
 TEST(Mesh, EulerCharacteristicOfBuiltShapes) {
     EXPECT_EQ(euler_characteristic(test::make_icosphere(2)), 2);
     EXPECT_EQ(euler_characteristic(test::make_torus(1.0, 0.3, 24, 12)), 0);
     EXPECT_EQ(euler_characteristic(test::make_cube(1.0, 3)), 2);
     EXPECT_NEAR(surface_area(test::make_cube(1.0, 3)), 24.0, 1e-12);
+}
+
+TEST(Mesh, EdgeCountsAreSortedPairsWithTheirMultiplicity) {
+    auto expect_counts = [](const Triangles& t) {
+        std::map<std::pair<int32_t, int32_t>, int> expected; // counted from scratch
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                ++expected[{std::min(t(f, j), t(f, (j + 1) % 3)), std::max(t(f, j), t(f, (j + 1) % 3))}];
+        const std::vector<EdgeCount> got = edge_counts(t);
+        ASSERT_EQ(got.size(), expected.size());
+        auto it = expected.begin();
+        for (const EdgeCount& e : got) {
+            EXPECT_EQ(std::make_pair(e.a, e.b), it->first);
+            EXPECT_EQ(e.count, it->second);
+            ++it;
+        }
+    };
+    expect_counts(test::make_torus(1.0, 0.3, 12, 6).triangles);
+    Triangles fin(4, 3); // three triangles on the edge {0, 1}, and one with a repeated index
+    fin << 0, 1, 2, 1, 0, 3, 0, 1, 4, 4, 4, 0;
+    expect_counts(fin);
+    fin(2, 2) = 1'000'000; // an index far beyond the triangle count: the other code path
+    expect_counts(fin);
+    EXPECT_TRUE(edge_counts(Triangles(0, 3)).empty());
 }

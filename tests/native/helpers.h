@@ -110,6 +110,74 @@ inline Mesh make_cube(double s, int n) {
     return make_mesh(p, f);
 }
 
+//! Open square [0, s]^2 in the plane z = 0, an n x n grid split into triangles, normal +z.
+inline Mesh make_square(double s, int n) {
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) p.emplace_back(s * i / n, s * j / n, 0.0);
+    auto id = [&](int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return make_mesh(p, f);
+}
+
+//! Flat plate [-w/2, w/2] x [-h/2, h/2] (z = 0, normal +z) with a round hole of radius r at the
+//! origin, as a shell midsurface: each side cut into pieces of about `edge`, the four corners
+//! among the cuts, every cut joined to the hole by `rings` rings of quads split in two. The hole
+//! is a polygon with one vertex per cut, at the cut's polar angle.
+inline Mesh make_plate_with_hole(double w, double h, double r, double edge, int rings) {
+    std::vector<Eigen::Vector2d> outer; // counter-clockwise from (w/2, -h/2)
+    auto side = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+        const int n = std::max(1, static_cast<int>(std::lround((b - a).norm() / edge)));
+        for (int k = 0; k < n; ++k) outer.push_back(a + (b - a) * (static_cast<double>(k) / n));
+    };
+    const Eigen::Vector2d c0(w / 2, -h / 2), c1(w / 2, h / 2), c2(-w / 2, h / 2), c3(-w / 2, -h / 2);
+    side(c0, c1);
+    side(c1, c2);
+    side(c2, c3);
+    side(c3, c0);
+    const int n = static_cast<int>(outer.size());
+    std::vector<Eigen::Vector3d> p;
+    for (const Eigen::Vector2d& o : outer) {
+        const Eigen::Vector2d in = r * o.normalized();
+        for (int j = 0; j <= rings; ++j) {
+            const Eigen::Vector2d x = in + (o - in) * (static_cast<double>(j) / rings);
+            p.emplace_back(x.x(), x.y(), 0.0);
+        }
+    }
+    auto id = [&](int i, int j) { return static_cast<int32_t>((i % n) * (rings + 1) + j); };
+    std::vector<std::array<int32_t, 3>> f;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < rings; ++j) {
+            f.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+            f.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+        }
+    return make_mesh(p, f);
+}
+
+//! Open tube of radius r around the z axis from z = 0 to z = length: n x m quads split in two,
+//! normals pointing out; its two ends are n-gons.
+inline Mesh make_open_cylinder(double r, double length, int n, int m) {
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    for (int j = 0; j <= m; ++j)
+        for (int i = 0; i < n; ++i) {
+            const double u = 2 * M_PI * i / n;
+            p.emplace_back(r * std::cos(u), r * std::sin(u), length * j / m);
+        }
+    auto id = [&](int i, int j) { return static_cast<int32_t>(j * n + (i % n)); };
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < n; ++i) {
+            f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    return make_mesh(p, f);
+}
+
 //! n sites near a (lifted) surface: uniform points of random triangles, moved off it by Gaussian
 //! noise of standard deviation `noise` in every coordinate (generic positions for the tests).
 inline LiftedPoints sites_near(const LiftedSurface& s, int n, double noise, unsigned seed) {

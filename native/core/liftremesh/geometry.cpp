@@ -36,6 +36,17 @@ double triangle_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b
     return best;
 }
 
+Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const Eigen::Vector3d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    if (!(len2 > 0.0)) return a;
+    const double t = std::clamp(ab.dot(p - a) / len2, 0.0, 1.0);
+    // The end points exactly, not a + 1.0 * (b - a), so that a point snapped to a corner is on it.
+    if (t == 0.0) return a;
+    if (t == 1.0) return b;
+    return a + t * ab;
+}
+
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;

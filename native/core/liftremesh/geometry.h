@@ -47,6 +47,9 @@ double triangle_kappa(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
 //! Smallest interior angle of a 3D triangle, in degrees (0 for a degenerate one).
 double triangle_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+//! Closest point to p on the segment [a, b] in 3D (a itself when a == b).
+Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 //! Closest point to p on triangle (a, b, c) in 3D (Ericson, Real-Time Collision Detection 5.1.5).
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c);

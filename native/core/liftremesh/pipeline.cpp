@@ -1,5 +1,6 @@
 #include "liftremesh/pipeline.h"
 
+#include "liftremesh/boundary_snap.h"
 #include "liftremesh/density.h"
 #include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
@@ -144,6 +145,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
     report.edges_collapsed = collapse_short_edges(out);
     undo_transform(to_unit, out.points);
+    // After the collapse, which may keep an interior end point of an edge at the boundary, and in
+    // the input's coordinates, so that snapped corners are exactly the input's.
+    report.boundary_vertices_snapped = snap_boundary(out, input).moved();
     clock.end();
 
     clock.begin("quality");

@@ -110,6 +110,7 @@ std::string to_json(const RemeshReport& report) {
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},
                         {"edges_collapsed", json_number(report.edges_collapsed)},
+                        {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
                         {"timings", json_timings(report.timings, 2)}},
                        0) +
            "\n";

@@ -26,6 +26,7 @@ struct RemeshReport {
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
+    long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     std::vector<StageTime> timings;
 };
 

@@ -1,0 +1,348 @@
+#include "liftremesh/boundary_snap.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+#include "liftremesh/neighbor_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <unordered_set>
+#include <utility>
+
+namespace liftremesh {
+
+namespace {
+
+using Edge = std::pair<int32_t, int32_t>;
+
+Eigen::Vector3d position(const Mesh& m, int32_t v) { return m.points.row(v).transpose(); }
+
+std::vector<Edge> boundary_edges(const Triangles& triangles) {
+    std::vector<Edge> out;
+    for (const EdgeCount& e : edge_counts(triangles))
+        if (e.count == 1) out.emplace_back(e.a, e.b);
+    return out;
+}
+
+struct Corner {
+    int32_t vertex;
+    double turn_deg; // 180 where the boundary does not simply pass through (not two edges)
+};
+
+// Corners of the boundary made of `edges` (see boundary_corners()), by increasing vertex index.
+std::vector<Corner> find_corners(const Mesh& mesh, const std::vector<Edge>& edges, double angle_deg) {
+    std::vector<std::vector<int32_t>> next(static_cast<size_t>(mesh.points.rows()));
+    for (const auto& [a, b] : edges) {
+        next[a].push_back(b);
+        next[b].push_back(a);
+    }
+    std::vector<Corner> out;
+    for (size_t v = 0; v < next.size(); ++v) {
+        if (next[v].empty()) continue;
+        if (next[v].size() != 2) {
+            out.push_back({static_cast<int32_t>(v), 180.0});
+            continue;
+        }
+        const Eigen::Vector3d p = position(mesh, static_cast<int32_t>(v));
+        const Eigen::Vector3d in = p - position(mesh, next[v][0]), out_dir = position(mesh, next[v][1]) - p;
+        if (!(in.norm() > 0.0 && out_dir.norm() > 0.0)) continue; // a zero-length edge has no direction
+        const double turn = std::atan2(in.cross(out_dir).norm(), in.dot(out_dir)) * 180.0 / M_PI;
+        if (turn > angle_deg) out.push_back({static_cast<int32_t>(v), turn});
+    }
+    return out;
+}
+
+void check_options(const BoundarySnapOptions& o) {
+    auto fail = [](const char* field, double value, const char* expected) {
+        std::ostringstream message;
+        message << "BoundarySnapOptions." << field << " = " << value << ": expected " << expected;
+        throw InvalidInput(message.str());
+    };
+    if (!(o.corner_angle_deg > 0.0 && o.corner_angle_deg < 180.0))
+        fail("corner_angle_deg", o.corner_angle_deg, "an angle in (0, 180) degrees");
+    if (!(o.reach > 0.0 && std::isfinite(o.reach))) fail("reach", o.reach, "a finite number > 0");
+    if (!(o.min_area_ratio >= 0.0 && o.min_area_ratio < 1.0))
+        fail("min_area_ratio", o.min_area_ratio, "a number in [0, 1)");
+    if (!(o.min_kappa >= 0.0 && o.min_kappa < 1.0)) fail("min_kappa", o.min_kappa, "a number in [0, 1)");
+}
+
+// Moves of single output vertices, each kept only if no triangle around the vertex flips, loses
+// more than the allowed share of its area or falls below the kappa floor, measured against the
+// triangles as they were when the mover was made (the accepted moves of neighbours count).
+class VertexMover {
+public:
+    VertexMover(Mesh& mesh, const std::vector<int32_t>& movable, const BoundarySnapOptions& options)
+        : mesh_(mesh), min_area_ratio_(options.min_area_ratio), min_kappa_(options.min_kappa),
+          slot_(static_cast<size_t>(mesh.points.rows()), -1) {
+        for (size_t i = 0; i < movable.size(); ++i) slot_[movable[i]] = static_cast<int32_t>(i);
+        // Triangles around each movable vertex, as compressed rows.
+        first_.assign(movable.size() + 1, 0);
+        const Triangles& t = mesh.triangles;
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                if (slot_[t(f, j)] >= 0) ++first_[slot_[t(f, j)] + 1];
+        for (size_t i = 0; i < movable.size(); ++i) first_[i + 1] += first_[i];
+        triangles_.resize(first_.back());
+        before_.resize(first_.back());
+        kappa_before_.resize(first_.back());
+        std::vector<long> fill(first_.begin(), first_.end() - 1);
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                if (slot_[t(f, j)] >= 0) {
+                    const long k = fill[slot_[t(f, j)]]++;
+                    triangles_[k] = static_cast<int32_t>(f);
+                    before_[k] = doubled_normal(static_cast<int32_t>(f));
+                    kappa_before_[k] = kappa(static_cast<int32_t>(f));
+                }
+    }
+
+    //! Puts vertex v at `target` unless a triangle around it would flip, collapse or fall below
+    //! the quality floor.
+    bool try_move(int32_t v, const Eigen::Vector3d& target) {
+        const int32_t s = slot_[v];
+        const Eigen::Vector3d old = position(mesh_, v);
+        mesh_.points.row(v) = target.transpose();
+        for (long k = first_[s]; k < first_[s + 1]; ++k) {
+            const Eigen::Vector3d after = doubled_normal(triangles_[k]), &before = before_[k];
+            const bool collapses = after.norm() < min_area_ratio_ * before.norm();
+            const bool flips = before.squaredNorm() > 0.0 && after.dot(before) <= 0.0;
+            const bool sliver = kappa(triangles_[k]) < std::min(min_kappa_, kappa_before_[k]);
+            if (collapses || flips || sliver) {
+                mesh_.points.row(v) = old.transpose();
+                return false;
+            }
+        }
+        return true;
+    }
+
+private:
+    Eigen::Vector3d doubled_normal(int32_t f) const { // (b - a) x (c - a): twice the area, along the normal
+        const Eigen::Vector3d a = position(mesh_, mesh_.triangles(f, 0));
+        return (position(mesh_, mesh_.triangles(f, 1)) - a).cross(position(mesh_, mesh_.triangles(f, 2)) - a);
+    }
+
+    double kappa(int32_t f) const { // Eq. 26
+        return triangle_kappa(position(mesh_, mesh_.triangles(f, 0)), position(mesh_, mesh_.triangles(f, 1)),
+                              position(mesh_, mesh_.triangles(f, 2)));
+    }
+
+    Mesh& mesh_;
+    double min_area_ratio_, min_kappa_;
+    std::vector<int32_t> slot_;           // per vertex of the mesh: index in `movable`, or -1
+    std::vector<long> first_;             // per movable vertex: its triangles are [first_[i], first_[i + 1])
+    std::vector<int32_t> triangles_;
+    std::vector<Eigen::Vector3d> before_; // doubled normal of each listed triangle at construction
+    std::vector<double> kappa_before_;    // and its kappa
+};
+
+// Nearest points on a set of segments. The segments are sampled at most `spacing` apart (the
+// midpoints of equal pieces): the nearest sample, at distance m, bounds the distance d to the
+// nearest segment by d <= m, and every segment at distance <= m has a sample within
+// m + spacing / 2; the segments of the samples within that radius are tested exactly.
+class SegmentSearch {
+public:
+    SegmentSearch(const Mesh& mesh, const std::vector<Edge>& segments, double spacing)
+        : mesh_(mesh), segments_(segments), half_spacing_(0.5 * spacing) {
+        std::vector<Eigen::Vector3d> samples;
+        for (size_t i = 0; i < segments.size(); ++i) {
+            const Eigen::Vector3d a = position(mesh, segments[i].first), b = position(mesh, segments[i].second);
+            const long pieces = std::max(1L, static_cast<long>(std::ceil((b - a).norm() / spacing)));
+            for (long k = 0; k < pieces; ++k) {
+                samples.push_back(a + (b - a) * ((static_cast<double>(k) + 0.5) / static_cast<double>(pieces)));
+                segment_of_.push_back(static_cast<int32_t>(i));
+            }
+        }
+        LiftedPoints pts(static_cast<Eigen::Index>(samples.size()), 3);
+        for (size_t i = 0; i < samples.size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = samples[i].transpose();
+        tree_ = std::make_unique<KdTree>(pts);
+    }
+
+    //! The nearest point on the segments to q if it lies within `radius`.
+    bool nearest_within(const Eigen::Vector3d& q, double radius, Eigen::Vector3d& point) const {
+        int32_t i;
+        double m2;
+        if (tree_->knn(q.data(), 1, &i, &m2) < 1) return false;
+        const double m = std::sqrt(m2);
+        if (m > radius + half_spacing_) return false; // every segment is farther than radius
+        found_.clear();
+        tree_->within(q.data(), m + half_spacing_, found_);
+        candidates_.clear();
+        for (int32_t sample : found_) candidates_.push_back(segment_of_[sample]);
+        candidates_.push_back(segment_of_[i]); // found_ may miss it by rounding at the radius
+        std::sort(candidates_.begin(), candidates_.end());
+        candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+        double best = std::numeric_limits<double>::infinity();
+        for (int32_t s : candidates_) { // increasing segment index: ties go to the first
+            const Eigen::Vector3d p = closest_point_on_segment(q, position(mesh_, segments_[s].first),
+                                                               position(mesh_, segments_[s].second));
+            const double d2 = (p - q).squaredNorm();
+            if (d2 < best) {
+                best = d2;
+                point = p;
+            }
+        }
+        return best <= radius * radius;
+    }
+
+private:
+    const Mesh& mesh_;
+    const std::vector<Edge>& segments_;
+    double half_spacing_;
+    std::vector<int32_t> segment_of_; // per sample
+    std::unique_ptr<KdTree> tree_;
+    mutable std::vector<int32_t> found_, candidates_;
+};
+
+// The boundary vertices of the output with what the moves need to know about them.
+struct OutputBoundary {
+    std::vector<int32_t> vertices;         // increasing index
+    std::vector<double> reach;             // per vertex: options.reach x mean length of its boundary edges
+    std::vector<Eigen::Vector3d> outward;  // per vertex: see below
+    double max_reach = 0.0, mean_edge = 0.0;
+
+    OutputBoundary(const Mesh& output, double reach_factor) {
+        const std::vector<Edge> edges = boundary_edges(output.triangles);
+        if (edges.empty()) return;
+        std::vector<int32_t> slot(static_cast<size_t>(output.points.rows()), -1);
+        for (const auto& [a, b] : edges)
+            for (int32_t v : {a, b})
+                if (slot[v] < 0) {
+                    slot[v] = 0;
+                    vertices.push_back(v);
+                }
+        std::sort(vertices.begin(), vertices.end());
+        for (size_t i = 0; i < vertices.size(); ++i) slot[vertices[i]] = static_cast<int32_t>(i);
+        reach.assign(vertices.size(), 0.0);
+        std::vector<int> degree(vertices.size(), 0);
+        for (const auto& [a, b] : edges) {
+            const double length = (position(output, a) - position(output, b)).norm();
+            mean_edge += length / static_cast<double>(edges.size());
+            for (int32_t v : {a, b}) {
+                reach[slot[v]] += length;
+                ++degree[slot[v]];
+            }
+        }
+        for (size_t i = 0; i < vertices.size(); ++i) {
+            reach[i] *= reach_factor / degree[i];
+            max_reach = std::max(max_reach, reach[i]);
+        }
+        // Outward: the sum of the unit normals of the vertex's boundary edges in the planes of
+        // their triangles, pointing away from them. A triangle, counter-clockwise about its
+        // normal n, lies left of its edge a -> b: outward is (b - a) x n.
+        outward.assign(vertices.size(), Eigen::Vector3d::Zero());
+        std::unordered_set<std::uint64_t> is_boundary;
+        is_boundary.reserve(2 * edges.size());
+        for (const auto& [a, b] : edges) is_boundary.insert(edge_key(a, b));
+        for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = output.triangles(f, j), b = output.triangles(f, (j + 1) % 3);
+                if (slot[a] < 0 || slot[b] < 0 || !is_boundary.count(edge_key(a, b))) continue;
+                const Eigen::Vector3d n =
+                    triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
+                const Eigen::Vector3d out = (position(output, b) - position(output, a)).cross(n);
+                const double length = out.norm();
+                if (!(length > 0.0)) continue;
+                outward[slot[a]] += out / length;
+                outward[slot[b]] += out / length;
+            }
+    }
+
+    //! Whether moving vertex i from `from` to `to` goes out of the output, towards input it does
+    //! not cover yet. A move back into the output would uncover input its triangles cover now.
+    bool goes_out(size_t i, const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+        return (to - from).dot(outward[i]) > 0.0;
+    }
+};
+
+// Step 1 of snap_boundary(): each corner, sharpest first, onto the nearest free output boundary
+// vertex within reach that can go there. Marks the vertices used in `placed`; returns how many.
+long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner> corners, const OutputBoundary& boundary,
+                   VertexMover& mover, std::vector<char>& placed) {
+    std::stable_sort(corners.begin(), corners.end(),
+                     [](const Corner& x, const Corner& y) { return x.turn_deg > y.turn_deg; });
+    // Positions before any move, so that every candidate is measured from where it was.
+    LiftedPoints before(static_cast<Eigen::Index>(boundary.vertices.size()), 3);
+    for (size_t i = 0; i < boundary.vertices.size(); ++i)
+        before.row(static_cast<Eigen::Index>(i)) = output.points.row(boundary.vertices[i]);
+    const KdTree tree(before);
+    long matched = 0;
+    std::vector<int32_t> found;
+    std::vector<std::pair<double, int32_t>> candidates;
+    for (const Corner& c : corners) {
+        const Eigen::Vector3d p = position(input, c.vertex);
+        found.clear();
+        tree.within(p.data(), boundary.max_reach, found);
+        candidates.clear();
+        for (int32_t i : found) {
+            const Eigen::Vector3d from = before.row(i).transpose();
+            const double d = (from - p).norm();
+            if (!placed[i] && d <= boundary.reach[i] && boundary.goes_out(static_cast<size_t>(i), from, p))
+                candidates.emplace_back(d, i);
+        }
+        std::sort(candidates.begin(), candidates.end());
+        for (const auto& [d, i] : candidates)
+            if (mover.try_move(boundary.vertices[i], p)) {
+                placed[i] = 1;
+                ++matched;
+                break;
+            }
+    }
+    return matched;
+}
+
+} // namespace
+
+std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg) {
+    check_indices(mesh, "boundary_corners");
+    if (!(angle_deg >= 0.0 && angle_deg < 180.0))
+        throw InvalidInput("boundary_corners: angle_deg = " + std::to_string(angle_deg) +
+                           ": expected an angle in [0, 180) degrees");
+    std::vector<int32_t> out;
+    for (const Corner& c : find_corners(mesh, boundary_edges(mesh.triangles), angle_deg)) out.push_back(c.vertex);
+    return out;
+}
+
+BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options) {
+    check_options(options);
+    check_indices(input, "snap_boundary input");
+    check_indices(output, "snap_boundary output");
+    BoundarySnapStats stats;
+    const std::vector<Edge> input_edges = boundary_edges(input.triangles);
+    if (input_edges.empty()) return stats; // closed input: nothing to snap to
+    std::vector<Corner> corners = find_corners(input, input_edges, options.corner_angle_deg);
+    stats.input_corners = static_cast<long>(corners.size());
+    const OutputBoundary boundary(output, options.reach);
+    if (boundary.vertices.empty()) return stats;
+    VertexMover mover(output, boundary.vertices, options);
+    std::vector<char> placed(boundary.vertices.size(), 0);
+    stats.corners_matched = match_corners(output, input, corners, boundary, mover, placed);
+
+    // Step 2: every other boundary vertex onto its nearest point of the input's boundary. The
+    // sample spacing only trades tree size against candidates per query (the answer is exact):
+    // half the mean output boundary edge, and at most ~8 samples per boundary edge or vertex.
+    double input_length = 0.0;
+    for (const auto& [a, b] : input_edges) input_length += (position(input, a) - position(input, b)).norm();
+    const double spacing = std::max(
+        0.5 * boundary.mean_edge,
+        input_length / (8.0 * static_cast<double>(input_edges.size() + boundary.vertices.size())));
+    if (!(spacing > 0.0)) return stats; // all boundary edges have zero length: no direction to go
+    const SegmentSearch search(input, input_edges, spacing);
+    for (size_t i = 0; i < boundary.vertices.size(); ++i) {
+        if (placed[i]) continue;
+        const Eigen::Vector3d q = position(output, boundary.vertices[i]);
+        Eigen::Vector3d target = q;
+        if (!search.nearest_within(q, boundary.reach[i], target) || target == q || !boundary.goes_out(i, q, target))
+            continue;
+        if (mover.try_move(boundary.vertices[i], target))
+            ++stats.vertices_snapped;
+        else
+            ++stats.moves_refused;
+    }
+    return stats;
+}
+
+} // namespace liftremesh

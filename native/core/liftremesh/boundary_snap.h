@@ -1,0 +1,75 @@
+// Putting the output's boundary onto the input's boundary on open surfaces. The restricted
+// Delaunay triangulation places every vertex at a site, i.e. at (near) the centroid of its
+// restricted Voronoi cell; a cell that touches the input's boundary has its centroid inside it,
+// so without this step the output's boundary runs about a third of an edge length inside the
+// input's and cuts its corners off. Closed inputs are left untouched.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace liftremesh {
+
+struct BoundarySnapOptions {
+    //! A boundary vertex of the input is a corner where its boundary turns by more than this
+    //! (degrees, in (0, 180)): the angle between the directions of its two boundary edges.
+    //! 30 by default: a polyline approximating a smooth curve turns by its edge length over the
+    //! curvature radius, under 30 degrees from 12 segments per full circle on, while the corners
+    //! a CAD or FEM shell boundary has by design (rectangles, slots, hexagons) turn 60 degrees
+    //! or more.
+    double corner_angle_deg = 30.0;
+    //! How far an output boundary vertex may move, in units of its local edge length (the mean
+    //! length of its boundary edges in the output); > 0, default 1. A vertex farther than this
+    //! from the input's boundary belongs to a boundary the input does not have, and stays.
+    double reach = 1.0;
+    //! A move is refused if it leaves a triangle around the vertex with less than this fraction
+    //! of its area before the step (in [0, 1), default 0.25), or turns its normal by 90 degrees
+    //! or more (a flip).
+    double min_area_ratio = 0.25;
+    //! A move is also refused if it leaves a triangle around the vertex with a kappa (Eq. 26)
+    //! below this floor and below its kappa before the step (in [0, 1), default 0.3, the
+    //! project's bound on the smallest kappa): a corner left slightly cut is a smaller error than
+    //! a sliver element.
+    double min_kappa = 0.3;
+};
+
+struct BoundarySnapStats {
+    long input_corners = 0;    //!< corners of the input's boundary (boundary_corners())
+    long corners_matched = 0;  //!< of them, those an output vertex was moved onto
+    long vertices_snapped = 0; //!< other output boundary vertices moved onto the input's boundary
+    long moves_refused = 0;    //!< other output boundary vertices in reach left where they were
+                               //!< because their move would spoil a triangle (see snap_boundary())
+    long moved() const { return corners_matched + vertices_snapped; }
+};
+
+//! Corners of the boundary of `mesh` (boundary edge: an edge used by exactly one triangle):
+//! boundary vertices where the boundary turns by more than `angle_deg` degrees, plus those with
+//! other than two boundary edges (where boundary curves end or meet, a non-manifold boundary).
+//! Vertex indices, increasing. Empty for a closed mesh. Throws InvalidInput if an index is out
+//! of range or angle_deg is not in [0, 180).
+std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0);
+
+//! Moves the boundary vertices of `output` onto the boundary of `input` (both in the same
+//! coordinates; `output` an oriented manifold, as make_manifold() leaves it). Reach of an output
+//! boundary vertex: options.reach times the mean length of its boundary edges.
+//!  1. each corner of the input's boundary (boundary_corners()), sharpest turn first, takes the
+//!     nearest output boundary vertex within reach that no corner has taken yet and whose move
+//!     is allowed (below), and that vertex goes exactly onto the corner;
+//!  2. every other output boundary vertex goes to its nearest point on the input's boundary
+//!     edges (exact, closest_point_on_segment()), if that point is within reach;
+//!  3. a move is allowed only if it goes out of the output (along the sum of the outward
+//!     normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
+//!     inside its cell, so the input's boundary lies beyond the output's) and leaves every
+//!     triangle around the vertex unflipped, with at least options.min_area_ratio of its area
+//!     and a kappa of at least min(options.min_kappa, its kappa before). Moves are made one at
+//!     a time, corners first then by vertex index, each checked against the triangles as the
+//!     moves before it left them.
+//! Only positions change: the triangles, the topology and every interior vertex stay. A closed
+//! `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts (O(#F)),
+//! one pass over the triangles and O(B log B) for the B boundary vertices and edges. Throws
+//! InvalidInput if an index is out of range or an option outside its range.
+BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {});
+
+} // namespace liftremesh

@@ -1,0 +1,199 @@
+// Putting the output's boundary onto the input's (boundary_snap.h): on meshes built here, then
+// through remesh() on open surfaces of the kind FEM shell users give (a plate with a hole).
+#include "liftremesh/boundary_snap.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+#include "liftremesh/pipeline.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <map>
+#include <set>
+
+using namespace liftremesh;
+
+namespace {
+
+// Boundary edges (used by one triangle), counted here from scratch.
+std::vector<std::pair<int32_t, int32_t>> boundary_edges_of(const Mesh& m) {
+    std::map<std::pair<int32_t, int32_t>, int> count;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = m.triangles(f, j), b = m.triangles(f, (j + 1) % 3);
+            ++count[{std::min(a, b), std::max(a, b)}];
+        }
+    std::vector<std::pair<int32_t, int32_t>> out;
+    for (const auto& [e, n] : count)
+        if (n == 1) out.push_back(e);
+    return out;
+}
+
+std::set<int32_t> boundary_vertices_of(const Mesh& m) {
+    std::set<int32_t> out;
+    for (const auto& [a, b] : boundary_edges_of(m)) out.insert({a, b});
+    return out;
+}
+
+// Largest distance from a boundary vertex of `output` to the boundary edges of `input`.
+double boundary_gap(const Mesh& output, const Mesh& input) {
+    const auto edges = boundary_edges_of(input);
+    double worst = 0.0;
+    for (int32_t v : boundary_vertices_of(output)) {
+        const Eigen::Vector3d p = output.points.row(v).transpose();
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& [a, b] : edges)
+            best = std::min(best, (closest_point_on_segment(p, input.points.row(a).transpose(),
+                                                            input.points.row(b).transpose()) - p).norm());
+        worst = std::max(worst, best);
+    }
+    return worst;
+}
+
+double distance_to_nearest_vertex(const Mesh& m, const Eigen::Vector3d& x) {
+    return (m.points.rowwise() - x.transpose()).rowwise().norm().minCoeff();
+}
+
+RemeshParams params_with(int vertices) {
+    RemeshParams p;
+    p.target_vertices = vertices;
+    return p;
+}
+
+} // namespace
+
+TEST(BoundarySnap, CornersAreWhereTheBoundaryTurns) {
+    const Mesh plate = test::make_plate_with_hole(100, 60, 10, 5, 8);
+    std::set<std::pair<double, double>> found;
+    for (int32_t v : boundary_corners(plate)) found.insert({plate.points(v, 0), plate.points(v, 1)});
+    // The four right angles; the hole (64 vertices, at most 9.5 degrees each) has none.
+    const std::set<std::pair<double, double>> expected = {{50, -30}, {50, 30}, {-50, 30}, {-50, -30}};
+    EXPECT_EQ(found, expected);
+    EXPECT_EQ(boundary_corners(plate, 1.0).size(), 4u + 64u); // below the hole's turns: all of it
+    EXPECT_TRUE(boundary_corners(test::make_icosphere(1)).empty());
+    EXPECT_TRUE(boundary_corners(test::make_open_cylinder(1, 2, 16, 4)).empty()); // 22.5-degree turns
+}
+
+TEST(BoundarySnap, AShrunkGridGoesBackOntoTheSquare) {
+    const Mesh input = test::make_square(1.0, 4);
+    Mesh output = test::make_square(1.0, 6);
+    const Eigen::RowVector3d centre(0.5, 0.5, 0.0);
+    output.points = ((output.points.rowwise() - centre) * 0.96).rowwise() + centre; // 0.02 inside
+    const Mesh before = output;
+
+    const BoundarySnapStats s = snap_boundary(output, input);
+    EXPECT_EQ(s.input_corners, 4);
+    EXPECT_EQ(s.corners_matched, 4);
+    EXPECT_EQ(s.vertices_snapped, 20);
+    EXPECT_EQ(s.moves_refused, 0);
+    EXPECT_EQ(boundary_gap(output, input), 0.0);
+    for (const Eigen::Vector3d c : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                    Eigen::Vector3d(0, 1, 0)})
+        EXPECT_EQ(distance_to_nearest_vertex(output, c), 0.0);
+    EXPECT_EQ(output.triangles, before.triangles);
+    const std::set<int32_t> boundary = boundary_vertices_of(before);
+    for (Eigen::Index v = 0; v < output.points.rows(); ++v)
+        if (!boundary.count(static_cast<int32_t>(v))) EXPECT_EQ(output.points.row(v), before.points.row(v));
+}
+
+TEST(BoundarySnap, ClosedOrFarAwayBoundariesAreLeftAlone) {
+    const Mesh sphere = test::make_icosphere(2), square = test::make_square(1.0, 4);
+    Mesh output = test::make_square(1.0, 5);
+    const Mesh before = output;
+    EXPECT_EQ(snap_boundary(output, sphere).moved(), 0); // closed input
+    EXPECT_EQ(output.points, before.points);
+    Mesh closed = sphere;
+    EXPECT_EQ(snap_boundary(closed, square).moved(), 0); // closed output
+    EXPECT_EQ(closed.points, sphere.points);
+    // An output boundary more than an edge length (0.2) from the input's: not the input's boundary.
+    output.points.col(2).array() += 0.25;
+    const Mesh lifted = output;
+    EXPECT_EQ(snap_boundary(output, square).moved(), 0);
+    EXPECT_EQ(output.points, lifted.points);
+}
+
+TEST(BoundarySnap, AMoveThatWouldCollapseATriangleIsRefused) {
+    // A boundary vertex v at the origin whose fan spans 270 degrees (v, p1, a), (v, p2, p1),
+    // (v, b, p2); the input's boundary is the line x = 0.8. v's nearest point (0.8, 0) lies out
+    // of the output, but the thin triangle (v, p1, a) would keep 20% of its area there. (Other
+    // vertices may move too; the test is about v.)
+    const Mesh output = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {0.6, -0.3, 0}, {-1, 0, 0}, {0, 1, 0}},
+                                        {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}});
+    const Mesh input = test::make_mesh({{0.8, -5, 0}, {0.8, 5, 0}, {-5, 5, 0}, {-5, -5, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    auto area = [](const Mesh& m, Eigen::Index f) {
+        return triangle_area(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2));
+    };
+    Mesh refused = output;
+    EXPECT_GE(snap_boundary(refused, input).moves_refused, 1);
+    EXPECT_EQ(refused.points.row(0), output.points.row(0));
+    for (Eigen::Index f = 0; f < output.triangles.rows(); ++f) EXPECT_GE(area(refused, f), 0.25 * area(output, f));
+    EXPECT_EQ(test::facing_inward(refused, Eigen::Vector3d(0, 0, -1)), 0); // none flipped
+
+    BoundarySnapOptions lenient;
+    lenient.min_area_ratio = 0.1;
+    Mesh moved = output;
+    snap_boundary(moved, input, lenient);
+    EXPECT_EQ(moved.points.row(0), Eigen::RowVector3d(0.8, 0, 0));
+    EXPECT_EQ(test::facing_inward(moved, Eigen::Vector3d(0, 0, -1)), 0);
+}
+
+TEST(BoundarySnap, BadOptionsAreRejected) {
+    const Mesh square = test::make_square(1.0, 2);
+    Mesh output = square;
+    BoundarySnapOptions o;
+    o.corner_angle_deg = 180;
+    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+    o = {};
+    o.reach = 0;
+    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+    o = {};
+    o.min_area_ratio = 1;
+    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+}
+
+// The plate with a hole of the issue: 100 x 60 mm, hole of 20 mm, 1500 vertices (h ~ 3 mm).
+// Without the step the output's boundary runs 0.3 h inside the plate's and cuts its corners:
+// Hausdorff distance 1.3% of the diagonal, corners 1 to 2 mm away from any vertex.
+TEST(RemeshOpenSurface, PlateWithAHoleKeepsItsBoundaryAndCorners) {
+    const Mesh input = test::make_plate_with_hole(100, 60, 10, 5, 8);
+    const double diagonal = bounding_box_diagonal(input.points);
+    const RemeshResult r = remesh(input, params_with(1500));
+    const test::Topology t = test::topology(r.mesh);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, euler_characteristic(input)); // 0: an annulus
+    EXPECT_EQ(test::facing_inward(r.mesh, Eigen::Vector3d(0, 0, -1)), 0); // still facing +z
+    EXPECT_LT(boundary_gap(r.mesh, input), 1e-9 * diagonal);
+    for (const Eigen::Vector3d c : {Eigen::Vector3d(50, -30, 0), Eigen::Vector3d(50, 30, 0),
+                                    Eigen::Vector3d(-50, 30, 0), Eigen::Vector3d(-50, -30, 0)})
+        EXPECT_LT(distance_to_nearest_vertex(r.mesh, c), 1e-9 * diagonal) << c.transpose();
+    EXPECT_EQ(r.report.boundary_vertices_snapped, static_cast<long>(boundary_vertices_of(r.mesh).size()));
+    EXPECT_GE(r.report.output.kappa_min, 0.3);
+    EXPECT_LE(r.report.hausdorff_relative, 0.005);
+}
+
+TEST(RemeshOpenSurface, SquareKeepsItsCorners) {
+    const Mesh input = test::make_square(1.0, 8);
+    const RemeshResult r = remesh(input, params_with(400));
+    const test::Topology t = test::topology(r.mesh);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, 1);
+    EXPECT_LT(boundary_gap(r.mesh, input), 1e-9 * std::sqrt(2.0));
+    for (const Eigen::Vector3d c : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                    Eigen::Vector3d(0, 1, 0)})
+        EXPECT_LT(distance_to_nearest_vertex(r.mesh, c), 1e-9) << c.transpose();
+    EXPECT_GE(r.report.output.kappa_min, 0.3);
+    EXPECT_LE(r.report.hausdorff_relative, 0.005);
+}
+
+TEST(RemeshOpenSurface, TubeEndsStayOnTheTubesRims) {
+    const Mesh input = test::make_open_cylinder(1.0, 3.0, 48, 12);
+    const RemeshResult r = remesh(input, params_with(1200));
+    const test::Topology t = test::topology(r.mesh);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, 0);
+    EXPECT_LT(boundary_gap(r.mesh, input), 1e-9 * bounding_box_diagonal(input.points));
+    EXPECT_GE(r.report.output.kappa_min, 0.3);
+    EXPECT_LE(r.report.hausdorff_relative, 0.005);
+}
