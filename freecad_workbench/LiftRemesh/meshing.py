@@ -13,13 +13,37 @@ from . import native
 from . import parameters
 
 
+# A result farther than this from its source (Hausdorff / diagonal) gets a warning.
+FAR_FROM_SOURCE = 0.01
+
+
 class Result:
-    """A remeshed surface: `mesh` (Mesh.Mesh, in document coordinates) and `report` (dict, the
-    fields of the command-line tool's JSON report)."""
+    """A remeshed surface: `mesh` (Mesh.Mesh, in document coordinates), `report` (dict, the
+    fields of the command-line tool's JSON report) and `warnings` (report_warnings())."""
 
     def __init__(self, mesh, report):
         self.mesh = mesh
         self.report = report
+        self.warnings = report_warnings(report)
+
+
+def report_warnings(report):
+    """What a user should know about a result that is not a faithful copy of its source: another
+    topology (parts thinner than the target edge length merge or break), new boundary edges, or a
+    large distance. Sentences; empty when all is well."""
+    source, output = report.get("input", {}), report.get("output", {})
+    found = []
+    if output.get("euler_characteristic") != source.get("euler_characteristic"):
+        found.append("the result's topology differs from the source's (Euler characteristic %s, source %s): "
+                     "parts thinner than the target edge length merged or broke; ask for more vertices or a "
+                     "smaller edge length" % (output.get("euler_characteristic"), source.get("euler_characteristic")))
+    if output.get("boundary_edges", 0) > source.get("boundary_edges", 0):
+        found.append("the result has %d boundary edges, the source %d"
+                     % (output.get("boundary_edges", 0), source.get("boundary_edges", 0)))
+    if (report.get("hausdorff_relative") or 0.0) > FAR_FROM_SOURCE:
+        found.append("the result is up to %.2g %% of the bounding-box diagonal away from the source"
+                     % (100.0 * report["hausdorff_relative"]))
+    return found
 
 
 def mesh_to_arrays(mesh):
@@ -101,7 +125,10 @@ def remesh_mesh(mesh, progress=None, **params):
     points, triangles = mesh_to_arrays(mesh)
     out_points, out_triangles, report = native.load().remesh(
         points, triangles, progress=progress, **parameters.module_arguments(values))
-    return Result(arrays_to_mesh(out_points, out_triangles), report)
+    result = Result(arrays_to_mesh(out_points, out_triangles), report)
+    for warning in result.warnings:
+        FreeCAD.Console.PrintWarning("LiftRemesh: %s\n" % warning)
+    return result
 
 
 def remesh_source(obj, progress=None, **params):

@@ -74,6 +74,22 @@ class DocumentTest(unittest.TestCase):
         self.doc.recompute()
         self.assertAlmostEqual(obj.Mesh.CountPoints / (expected * 4 / 9), 1.0, delta=0.05)
 
+    def test_partdesign_body_and_link_sources(self):
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        box = self.doc.addObject("PartDesign::AdditiveBox", "Box")
+        body.addObject(box)
+        link = self.doc.addObject("App::Link", "BlockLink")
+        link.LinkedObject = self.block
+        link.Placement.Base = FreeCAD.Vector(100, 0, 0)
+        self.doc.recompute()
+        from_body, from_link = LiftRemesh.remesh_objects(self.doc, [body, link], vertices=400)
+        self.assertEqual(from_body.Name, "Body_Remesh")
+        self.assertAlmostEqual(from_body.Mesh.Volume, 1000.0, delta=20.0)  # the 10 mm default box
+        self.assertAlmostEqual(from_link.Mesh.BoundBox.XMin, 100.0, delta=0.05)  # the link's placement
+        box.Length = 20
+        self.doc.recompute()
+        self.assertAlmostEqual(from_body.Mesh.Volume, 2000.0, delta=40.0)
+
     def test_mesh_source_is_remeshed(self):
         source = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=500)[0]
         again = LiftRemesh.remesh_objects(self.doc, [source], vertices=800)[0]

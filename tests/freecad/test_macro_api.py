@@ -107,6 +107,15 @@ class MacroApiTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "linear_deflection"):
             LiftRemesh.remesh_shape(box_with_hole(), linear_deflection=0)
 
+    def test_thin_parts_below_the_edge_length_are_reported(self):
+        """Two plates 0.2 mm apart remeshed with ~2 mm edges merge: the result says so."""
+        plates = Part.makeBox(20, 20, 1).fuse(Part.makeBox(20, 20, 1, FreeCAD.Vector(0, 0, 1.2)))
+        mesh = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(plates, 0.1, 0.5), vertices=150)
+        self.assertTrue(any("topology differs" in w for w in mesh.warnings), mesh.warnings)
+        good = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(box_with_hole(), 0.1, 0.5),
+                                      vertices=1500)
+        self.assertEqual(good.warnings, [])
+
     def test_cancel_from_progress(self):
         with self.assertRaises(LiftRemesh.Cancelled):
             LiftRemesh.remesh_shape(box_with_hole(), vertices=500,

@@ -45,6 +45,10 @@ def report_html(report):
         extra.append("remeshed in %.1f s" % seconds)
     if extra:
         lines.append("<br>" + ", ".join(extra))
+    from .. import meshing
+
+    for warning in meshing.report_warnings(report):
+        lines.append('<br><span style="color:#b00000">Warning: %s.</span>' % warning)
     return "".join(lines)
 
 
