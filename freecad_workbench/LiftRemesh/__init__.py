@@ -32,7 +32,9 @@ def remesh_shape(shape, progress=None, **params):
 
     values = parameters.resolve(params)
     mesh = meshing.tessellate(shape, values["linear_deflection"], values["angular_deflection"])
-    return meshing.remesh_mesh(mesh, progress=progress, **params).mesh
+    result = meshing.remesh_mesh(mesh, progress=progress, **params)
+    meshing.print_warnings(result, "the shape")
+    return result.mesh
 
 
 def make_fem_shell(doc, mesh_obj, **kwargs):

@@ -118,20 +118,26 @@ def input_mesh(obj, values):
 
 def remesh_mesh(mesh, progress=None, **params):
     """Remeshes a Mesh.Mesh; returns a Result. `params`: see parameters.resolve(); `progress`:
-    see liftremesh.remesh(). Raises ValueError (bad input) or liftremesh.Error (Cancelled, ...)."""
+    see liftremesh.remesh(). Raises ValueError (bad input) or liftremesh.Error (Cancelled, ...).
+    Touches no document and prints nothing: safe in a worker thread."""
     values = parameters.resolve(params)
     if mesh.CountFacets == 0:
         raise ValueError("the mesh to remesh is empty")
     points, triangles = mesh_to_arrays(mesh)
     out_points, out_triangles, report = native.load().remesh(
         points, triangles, progress=progress, **parameters.module_arguments(values))
-    result = Result(arrays_to_mesh(out_points, out_triangles), report)
+    return Result(arrays_to_mesh(out_points, out_triangles), report)
+
+
+def print_warnings(result, label):
+    """The result's warnings on FreeCAD's console (call from the main thread)."""
     for warning in result.warnings:
-        FreeCAD.Console.PrintWarning("LiftRemesh: %s\n" % warning)
-    return result
+        FreeCAD.Console.PrintWarning("LiftRemesh: %s: %s\n" % (label, warning))
 
 
 def remesh_source(obj, progress=None, **params):
     """Remeshes a document object (Part shape or mesh); returns a Result."""
     values = parameters.resolve(params)
-    return remesh_mesh(input_mesh(obj, values), progress=progress, **params)
+    result = remesh_mesh(input_mesh(obj, values), progress=progress, **params)
+    print_warnings(result, obj.Label)
+    return result

@@ -425,6 +425,7 @@ class RemeshTaskPanel:
         scroll_into_view(self._widget("report_group"))
         for obj, result in zip(self.sources, self.results):
             FreeCAD.Console.PrintMessage("LiftRemesh: %s\n" % report_view.summary(obj.Label, result.report))
+            meshing.print_warnings(result, obj.Label)
         if self._buttons is not None:
             self._buttons.setStandardButtons(QtGui.QDialogButtonBox.Close)
 
