@@ -31,7 +31,25 @@ def _value(prop, value):
     return value
 
 
-class RemeshFeature:
+class StatelessProxy:
+    """Base of the add-on's proxies (feature and view provider): they keep no state of their own
+    (everything is in properties), so the document saves nothing for them. FreeCAD 0.20 asks
+    __getstate__/__setstate__, 0.21 and later dumps/loads."""
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+
+class RemeshFeature(StatelessProxy):
     """Proxy of a remeshed mesh: Source (link to a Part shape or a mesh) + parameter properties.
     Its `execute` tessellates the source if it is a shape, remeshes and sets Mesh."""
 
@@ -69,19 +87,6 @@ class RemeshFeature:
             raise ValueError("%s has no source to remesh" % obj.Label)
         result = meshing.remesh_source(obj.Source, **params_of(obj))
         apply_result(obj, result)
-
-    # FreeCAD 0.20 saves proxies with __getstate__/__setstate__, 0.21+ with dumps/loads.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
 
 
 def params_of(obj):
@@ -144,12 +149,6 @@ def create_feature(doc, source, params, result=None):
         apply_result(obj, result)
         obj.purgeTouched()
     return obj
-
-
-def in_transaction(doc, name, work):
-    """Returns work(), run as one document change (document.document_change)."""
-    with document.document_change(doc, name):
-        return work()
 
 
 def check_sources(doc, objects):

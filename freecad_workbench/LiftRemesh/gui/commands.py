@@ -7,7 +7,7 @@ when it is activated):
 import FreeCAD
 import FreeCADGui
 
-from .. import feature
+from .. import document
 from .. import meshing
 from . import common
 
@@ -83,15 +83,12 @@ class CommandFemShell:
         if doc is None or not meshes:
             common.report_error("Select one or more mesh objects to make FEM shell meshes of.")
             return
-        def work():
-            created = [LiftRemesh.make_fem_shell(doc, obj) for obj in meshes]
-            for obj in meshes:  # the FEM mesh lies on it; undoing shows it again
-                if obj.ViewObject is not None:
-                    obj.ViewObject.hide()
-            return created
-
         try:
-            created = feature.in_transaction(doc, "FEM shell mesh", work)
+            with document.document_change(doc, "FEM shell mesh"):
+                created = [LiftRemesh.make_fem_shell(doc, obj) for obj in meshes]
+                for obj in meshes:  # the FEM mesh lies on it; undoing shows it again
+                    if obj.ViewObject is not None:
+                        obj.ViewObject.hide()
             doc.recompute()
         except Exception as error:
             common.report_error("FEM shell mesh failed, the document is unchanged: %s"

@@ -20,6 +20,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
+from .. import document
 from .. import feature as remesh_feature
 from .. import meshing
 from .. import parameters
@@ -234,14 +235,11 @@ class RemeshTaskPanel:
     def _replace_feature(self, params, result):
         """Edit mode: the feature takes the new parameters and mesh, in one transaction."""
         obj = self.feature
-
-        def work():
+        with document.document_change(self.doc, "Edit remesh"):
             remesh_feature.set_params(obj, params)
             remesh_feature.apply_result(obj, result)
             obj.purgeTouched()
-            return [obj]
-
-        return remesh_feature.in_transaction(self.doc, "Edit remesh", work)
+        return [obj]
 
     def _cancelled(self):
         """The job was cancelled: nothing was added; say so, and close if Cancel asked to."""

@@ -3,13 +3,14 @@ hidden while the remeshed mesh exists, and a double click to edit it in the task
 import FreeCAD
 import FreeCADGui
 
+from .. import feature
 from . import common
 
 DISPLAY_MODE = "Flat Lines"
 EDIT_MODE_DEFAULT = 0
 
 
-class ViewProviderRemesh:
+class ViewProviderRemesh(feature.StatelessProxy):
     """Proxy of the remesh feature's view object (Mesh::FeaturePython)."""
 
     def __init__(self, vobj):
@@ -62,19 +63,6 @@ class ViewProviderRemesh:
             return None
         FreeCADGui.Control.closeDialog()
         return True
-
-    # FreeCAD 0.20 saves proxies with __getstate__/__setstate__, 0.21+ with dumps/loads.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
 
 
 def set_source_visible(obj, visible):
