@@ -4,6 +4,7 @@ import unittest
 import numpy as np
 
 import liftremesh
+import mesh_checks
 
 
 def icosphere(subdivisions=2):
@@ -32,15 +33,6 @@ def icosphere(subdivisions=2):
     return np.array(points, dtype=np.float64), np.array(faces, dtype=np.int64)
 
 
-def edge_use(triangles):
-    """Directed edges -> count; a closed oriented manifold uses each once, its reverse once."""
-    counts = {}
-    for a, b, c in triangles.tolist():
-        for e in ((a, b), (b, c), (c, a)):
-            counts[e] = counts.get(e, 0) + 1
-    return counts
-
-
 class ModuleTest(unittest.TestCase):
     def setUp(self):
         self.points, self.triangles = icosphere(2)
@@ -52,10 +44,8 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(triangles.shape[1], 3)
         self.assertTrue(np.issubdtype(triangles.dtype, np.integer))
         # closed, oriented, chi 2; every vertex on the unit sphere within the chord error
-        directed = edge_use(triangles)
-        self.assertTrue(all(n == 1 and directed.get((b, a)) == 1 for (a, b), n in directed.items()))
-        chi = len(points) - len(directed) // 2 + len(triangles)
-        self.assertEqual(chi, 2)
+        self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles))
+        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2)
         radii = np.linalg.norm(points, axis=1)
         self.assertLess(np.max(np.abs(radii - 1.0)), 0.02)
         # the report is the CLI's JSON, as a dict, and agrees with the arrays
