@@ -86,4 +86,23 @@ TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
         EXPECT_LT((cached - fresh).cwiseAbs().maxCoeff(), 1e-12 * fresh.sum()) << "round " << round;
     }
     EXPECT_GT(reused, 0); // the stale lists were actually used
+
+    // A few movers (sites jumping up to several spacings, some across the torus) are checked on
+    // their own: no rebuild, the same diagram. Many movers make a rebuild.
+    const double spacing = cache.rebuild_distance / 0.35;
+    std::uniform_int_distribution<Eigen::Index> pick(0, v.rows() - 1);
+    std::uniform_real_distribution<double> jump(-4.0 * spacing, 4.0 * spacing);
+    for (const int movers : {1, 12, 15, 200}) {
+        const long rebuilds = cache.rebuilds;
+        for (int i = 0; i < movers; ++i) {
+            const Eigen::Index site = pick(rng);
+            if (i % 5 == 4) v.row(site) = v.row(pick(rng)) + 0.5 * spacing * LiftedPoints::Ones(1, v.cols());
+            else
+                for (int j = 0; j < 3; ++j) v(site, j) += jump(rng);
+        }
+        const long moved = ((v.leftCols(3) - cache.anchor).rowwise().norm().array() > cache.rebuild_distance).count();
+        const Eigen::VectorXd cached = areas_with(v, &cache), fresh = areas_with(v, nullptr);
+        EXPECT_LT((cached - fresh).cwiseAbs().maxCoeff(), 1e-12 * fresh.sum()) << movers << " movers";
+        EXPECT_EQ(cache.rebuilds - rebuilds, moved > 32 ? 1 : 0) << moved << " sites moved since the lists were made";
+    }
 }

@@ -35,6 +35,11 @@ LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eige
             s.valid[f] = 1;
         }
     }
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> centroids(nf, 3);
+    for (Eigen::Index f = 0; f < nf; ++f)
+        centroids.row(f) = (s.points.row(s.triangles(f, 0)).leftCols<3>() + s.points.row(s.triangles(f, 1)).leftCols<3>() +
+                            s.points.row(s.triangles(f, 2)).leftCols<3>()) / 3.0;
+    s.order = morton_order(centroids.data(), nf, 3);
     return s;
 }
 
@@ -112,15 +117,59 @@ double max_squared_distance(const Polygon2& p, const Eigen::Vector2d& ab, double
     return r2 + off_plane2;
 }
 
-// Makes the cache's neighbour lists current for `positions` if the sites moved too far since
-// they were made (or there are none). Returns the largest displacement since then (0 if rebuilt).
-double refresh_neighbours(const KdTree& tree, const LiftedPoints& positions, int threads, RvdCache& cache) {
+// How far the sites are from the anchor of the cache's tree and lists.
+struct Staleness {
+    Eigen::VectorXd displacement;  // #S distance of each site from its anchor position
+    std::vector<int32_t> movers;   // the sites farther than the rebuild distance from it
+    std::vector<char> is_mover;    // #S
+    double rest = 0.0;             // largest displacement of the other sites
+    // Per site k (CSR), the movers m now within `reach` of k's anchor: all those that can cut
+    // a polygon of k of radius R with 2 R + displacement[k] <= reach.
+    double reach = 0.0;
+    std::vector<int32_t> near_offsets, near_movers;
+};
+
+// Makes the cache's tree and neighbour lists current for `positions` if too many sites moved
+// too far since they were made (or there are none), and says how stale they are.
+Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCache& cache) {
     const long ns = positions.rows();
-    double delta = std::numeric_limits<double>::infinity();
-    if (cache.anchor.rows() == ns && cache.k > 0) delta = (positions - cache.anchor).rowwise().norm().maxCoeff();
-    if (delta <= cache.rebuild_distance) return delta;
-    cache.k = static_cast<int>(std::min<long>(ns, 24));
+    Staleness st;
+    st.is_mover.assign(ns, 0);
+    // Movers are few when the sites settle; a rebuild once they are too many for this.
+    const size_t max_movers = static_cast<size_t>(std::max(32L, ns / 128));
+    if (cache.tree && cache.anchor.rows() == ns && cache.k > 0) {
+        st.displacement = (positions - cache.anchor).rowwise().norm();
+        for (long s = 0; s < ns && st.movers.size() <= max_movers; ++s)
+            if (st.displacement[s] > cache.rebuild_distance) st.movers.push_back(static_cast<int32_t>(s));
+        if (st.movers.size() <= max_movers) {
+            for (int32_t m : st.movers) st.is_mover[m] = 1;
+            for (long s = 0; s < ns; ++s)
+                if (!st.is_mover[s]) st.rest = std::max(st.rest, st.displacement[s]);
+            st.reach = 3.0 * cache.spacing;
+            st.near_offsets.assign(ns + 1, 0);
+            std::vector<std::pair<int32_t, int32_t>> pairs; // (site, mover)
+            std::vector<int32_t> found;
+            for (int32_t m : st.movers) {
+                found.clear();
+                cache.tree->within(positions.row(m).data(), st.reach, found);
+                for (int32_t k : found)
+                    if (k != m && !st.is_mover[k]) pairs.emplace_back(k, m);
+            }
+            for (const auto& [k, m] : pairs) ++st.near_offsets[k + 1];
+            for (long k = 0; k < ns; ++k) st.near_offsets[k + 1] += st.near_offsets[k];
+            st.near_movers.resize(pairs.size());
+            std::vector<int32_t> fill(st.near_offsets.begin(), st.near_offsets.end() - 1);
+            for (const auto& [k, m] : pairs) st.near_movers[fill[k]++] = m;
+            return st;
+        }
+        st.movers.clear();
+        st.is_mover.assign(ns, 0);
+    }
+    st.displacement = Eigen::VectorXd::Zero(ns);
     cache.anchor = positions;
+    cache.tree = std::make_shared<const KdTree>(positions);
+    const KdTree& tree = *cache.tree;
+    cache.k = static_cast<int>(std::min<long>(ns, 24));
     cache.neighbours.resize(static_cast<size_t>(ns) * cache.k);
     cache.distances2.resize(cache.neighbours.size());
     const int k = cache.k;
@@ -133,10 +182,11 @@ double refresh_neighbours(const KdTree& tree, const LiftedPoints& positions, int
         if (k > 1) nearest.push_back(std::sqrt(cache.distances2[s * k + 1]));
     if (!nearest.empty()) {
         std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
-        cache.rebuild_distance = 0.35 * nearest[nearest.size() / 2];
+        cache.spacing = nearest[nearest.size() / 2];
+        cache.rebuild_distance = 0.35 * cache.spacing;
     }
     ++cache.rebuilds;
-    return 0.0;
+    return st;
 }
 
 template <int D>
@@ -152,11 +202,12 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     // walking the candidates in 3D order and stopping once d_3(k, l) > 2R (R measured in R^d)
     // still proves that no site left out can cut the polygon.
     const LiftedPoints positions = sites.leftCols(3);
-    const KdTree tree(positions);
     auto lifted_d2 = [&](long a, const double* b) { return (Map(sites.row(a).data()) - Map(b)).squaredNorm(); };
 
-    // Nearest-neighbour lists, possibly from an earlier diagram (see RvdCache).
-    const double delta = refresh_neighbours(tree, positions, threads, cache);
+    // Tree and nearest-neighbour lists, possibly from an earlier diagram: made at the anchor
+    // positions, from which all sites but a few movers are at most st.rest away (see RvdCache).
+    const Staleness st = refresh_neighbours(positions, threads, cache);
+    const KdTree& tree = *cache.tree;
     const int k_cached = cache.k;
     const int32_t* nn = cache.neighbours.data();
     const double* nn_d2 = cache.distances2.data();
@@ -176,8 +227,9 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         // computed once per triangle, and whether the site was queued already.
         std::vector<long> planar_stamp(ns, -1), visited_stamp(ns, -1);
         std::vector<PlanarSite> planar_of(ns);
-#pragma omp for schedule(static, 16)
-        for (long p = 0; p < nf; ++p) {
+#pragma omp for schedule(static, 8) // small chunks: triangles hold very different numbers of polygons; static: a fixed summation order
+        for (long i = 0; i < nf; ++i) {
+            const long p = surface.order[i];
             if (!surface.valid[p]) continue;
             const Vec x0 = Map(surface.points.row(surface.triangles(p, 0)).data());
             const Vec x1 = Map(surface.points.row(surface.triangles(p, 1)).data());
@@ -200,14 +252,15 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
             };
             // Seed: any site whose cell meets the triangle; propagation finds the others. The
             // one that met it last time usually still does; otherwise the site nearest to the
-            // centroid in R^d, which owns it: it lies within the lifted distance rho of the
-            // 3D-nearest site, so a 3D ball of radius rho holds it.
+            // centroid in R^d, which owns it: it lies within the lifted distance rho of any
+            // site, so within the 3D distance rho now, and rho + st.rest at the anchor unless
+            // it is a mover.
             const Vec centroid = (x0 + x1 + x2) / 3.0;
             auto exact_seed = [&]() {
                 int32_t first = tree.nearest(centroid.data());
                 double best = lifted_d2(first, centroid.data());
-                candidates.clear();
-                tree.within(centroid.data(), std::sqrt(best), candidates);
+                candidates.assign(st.movers.begin(), st.movers.end());
+                tree.within(centroid.data(), std::sqrt(best) + st.rest, candidates);
                 for (int32_t c : candidates)
                     if (const double d2 = lifted_d2(c, centroid.data()); d2 < best || (d2 == best && c < first)) {
                         best = d2;
@@ -235,48 +288,73 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 poly->push(c1, -2);
                 poly->push(c2, -3);
                 double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                const Eigen::Vector3d pk = positions.row(k).transpose();
+                // Applies the bisector of k and l if l is near enough to cut the polygon.
+                enum Outcome { kGoOn, kEmpty, kFull };
+                auto cut_by = [&](int32_t l) {
+                    const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
+                    if (d2 > 4.0 * r2) return kGoOn; // too far to cut this polygon
+                    if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) { // coincident sites: the lower index owns the cell
+                        if (l > k) return kGoOn;
+                        enqueue(l); // l owns this cell: propagate through it instead
+                        return kEmpty;
+                    }
+                    if (poly->full()) return kFull; // cannot happen for a Voronoi cell of a sane sampling
+                    if (!clip_by_bisector(*poly, vk, planar(l), l, *scratch)) return kGoOn;
+                    std::swap(poly, scratch);
+                    if (poly->n < 3) return kEmpty;
+                    r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                    return kGoOn;
+                };
+                // Candidates in order of distance from a query point q: the anchor of k, or k
+                // itself if it is a mover (its list is made now). A site l other than a mover
+                // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack.
+                const bool k_moves = st.is_mover[k];
+                const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
+                const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
                 const int32_t* list = &nn[k * k_cached];
                 const double* list_d2 = &nn_d2[k * k_cached];
-                double slack = delta; // the list's distances are from positions up to delta away
                 int count = k_cached;
-                bool empty = false;
-                const Eigen::Vector3d pk = positions.row(k).transpose();
+                if (k_moves) {
+                    more.resize(k_cached);
+                    more_d2.resize(k_cached);
+                    count = tree.knn(query, k_cached, more.data(), more_d2.data());
+                    list = more.data();
+                    list_d2 = more_d2.data();
+                }
+                Outcome outcome = kGoOn;
                 for (int j = 0;; ++j) {
                     if (j == count) { // ran out of listed neighbours before the security radius
                         if (count >= ns) break;
                         const int wanted = static_cast<int>(std::min<long>(ns, 2L * count));
                         more.resize(wanted);
                         more_d2.resize(wanted);
-                        count = tree.knn(positions.row(k).data(), wanted, more.data(), more_d2.data());
+                        count = tree.knn(query, wanted, more.data(), more_d2.data());
                         list = more.data();
                         list_d2 = more_d2.data();
-                        slack = 0.0; // fresh distances
-                        // The fresh list need not start with the stale one's sites (a site may
-                        // have moved closer): scan it from the start. Bisectors already applied
-                        // cut nothing the second time.
+                        // Ties may order the first entries differently: scan from the start.
+                        // Bisectors already applied cut nothing the second time.
                         j = 0;
                     }
                     const int32_t l = list[j];
-                    if (l == k) continue;
-                    // Every later entry, and every unlisted site, is at least sqrt(d0) - 2 slack away.
-                    const double lower = std::sqrt(list_d2[j]) - 2.0 * slack;
+                    if (l == k || st.is_mover[l]) continue; // movers come below
+                    // Every later entry, and every unlisted site, is at least sqrt(d0) - slack away.
+                    const double lower = std::sqrt(list_d2[j]) - slack;
                     if (lower > 0.0 && lower * lower > 4.0 * r2) break; // security radius reached
-                    const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
-                    if (d2 > 4.0 * r2) continue; // too far to cut this polygon
-                    if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) { // coincident sites: the lower index owns the cell
-                        if (l < k) { // l owns this cell: propagate through it instead
-                            empty = true;
-                            enqueue(l);
-                            break;
-                        }
-                        continue;
-                    }
-                    if (poly->full()) break; // cannot happen for a Voronoi cell of a sane sampling
-                    if (!clip_by_bisector(*poly, vk, planar(l), l, *scratch)) continue;
-                    std::swap(poly, scratch);
-                    if (poly->n < 3) { empty = true; break; }
-                    r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                    if ((outcome = cut_by(l)) != kGoOn) break;
                 }
+                // The movers, wherever they are: those near k's anchor if that is far enough,
+                // else all. The polygon only shrinks, so those left out by the radius at this
+                // point could cut nothing either.
+                if (!st.movers.empty() && outcome == kGoOn) {
+                    const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] <= st.reach;
+                    const int32_t* m = near_enough ? &st.near_movers[st.near_offsets[k]] : st.movers.data();
+                    const int32_t* end = near_enough ? &st.near_movers[0] + st.near_offsets[k + 1]
+                                                     : st.movers.data() + st.movers.size();
+                    for (; outcome == kGoOn && m != end; ++m)
+                        if (*m != k) outcome = cut_by(*m);
+                }
+                const bool empty = outcome == kEmpty;
                 if (empty) continue;
                 if (!any_polygon) cache.seeds[p] = k;
                 any_polygon = true;

@@ -13,9 +13,11 @@
 #pragma once
 
 #include "liftremesh/mesh.h"
+#include "liftremesh/neighbor_search.h"
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace liftremesh {
@@ -27,6 +29,8 @@ struct LiftedSurface {
     Eigen::VectorXd weights; //!< #F objective weights rho_p^delta (Eq. 25)
     LiftedPoints u1, u2;     //!< #F by d orthonormal tangent basis of each triangle (Eq. 15)
     std::vector<char> valid; //!< #F false for flat triangles (no basis): ignored (Section 3.1)
+    std::vector<long> order; //!< #F triangles along a Morton curve of their 3D centroids: the
+                             //!< diagram's processing order (neighbouring triangles share sites)
     int dimension() const { return static_cast<int>(points.cols()); }
 };
 
@@ -75,17 +79,24 @@ struct alignas(64) ThreadSlot {
 int resolve_threads(int threads);
 
 //! What one diagram can hand to the next when the sites move little between them (the
-//! optimiser's iterates): nearest-neighbour lists and, per triangle, a site whose cell met it.
-//! If no site moved more than delta since the lists were made, a listed neighbour is now at
-//! least d0 - 2 delta away and an unlisted one at least d0(last) - 2 delta, so the security
-//! radius test stays exact with stale lists; they are rebuilt once delta grows past 0.35 times
-//! the typical spacing. Optional: the diagram is the same with or without it (up to rounding).
+//! optimiser's iterates): a kd-tree of the sites and nearest-neighbour lists, both made at
+//! earlier positions (the anchor), and, per triangle, a site whose cell met it.
+//! If no site moved more than delta since the anchor, a site listed (or found in the tree) at
+//! anchor distance d0 is now at least d0 - 2 delta away, and so is every site after it in
+//! anchor order, so the security radius test stays exact with stale lists and a stale tree.
+//! The few sites that moved farther than 0.35 times the typical spacing (movers: while the
+//! sites settle, a handful keeps moving) are left out of that bound and checked on their own
+//! against every polygon near them; the tree and lists are rebuilt only once movers are more
+//! than 1/128 of the sites. Optional: the diagram is the same with or without it (up to
+//! rounding).
 struct RvdCache {
-    LiftedPoints anchor;             //!< #S by 3 site positions the lists were made at
+    std::shared_ptr<const KdTree> tree; //!< 3D kd-tree over `anchor`
+    LiftedPoints anchor;             //!< #S by 3 site positions the lists and tree were made at
     std::vector<int32_t> neighbours; //!< #S by k, nearest first at `anchor` (3D distances)
     std::vector<double> distances2;  //!< #S by k squared distances at `anchor`
     int k = 0;
-    double rebuild_distance = 0.0;   //!< rebuild once a site moved farther than this
+    double spacing = 0.0;            //!< median distance from a site to its nearest one, at `anchor`
+    double rebuild_distance = 0.0;   //!< sites farther than this from `anchor` are movers
     std::vector<int32_t> seeds;      //!< #F a site whose cell met the triangle last time, or -1
     long rebuilds = 0;               //!< how many times the lists were made (for benchmarks)
 };
