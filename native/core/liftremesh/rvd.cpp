@@ -287,7 +287,17 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 poly->push(c0, -1);
                 poly->push(c1, -2);
                 poly->push(c2, -3);
+                // Candidates in order of distance from a query point q: the anchor of k, or k
+                // itself if it is a mover (its list is made now). A site l other than a mover
+                // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack,
+                // and no site at more than 2 sqrt(r2) from k can cut the polygon: none at
+                // |q - anchor_l|^2 > stop_d2 can.
+                const bool k_moves = st.is_mover[k];
+                const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
+                const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
                 double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                auto security_d2 = [&] { const double reach = 2.0 * std::sqrt(r2) + slack; return reach * reach; };
+                double stop_d2 = security_d2();
                 const Eigen::Vector3d pk = positions.row(k).transpose();
                 // Applies the bisector of k and l if l is near enough to cut the polygon.
                 enum Outcome { kGoOn, kEmpty, kFull };
@@ -304,14 +314,9 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     std::swap(poly, scratch);
                     if (poly->n < 3) return kEmpty;
                     r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                    stop_d2 = security_d2();
                     return kGoOn;
                 };
-                // Candidates in order of distance from a query point q: the anchor of k, or k
-                // itself if it is a mover (its list is made now). A site l other than a mover
-                // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack.
-                const bool k_moves = st.is_mover[k];
-                const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
-                const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
                 const int32_t* list = &nn[k * k_cached];
                 const double* list_d2 = &nn_d2[k * k_cached];
                 int count = k_cached;
@@ -338,9 +343,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     }
                     const int32_t l = list[j];
                     if (l == k || st.is_mover[l]) continue; // movers come below
-                    // Every later entry, and every unlisted site, is at least sqrt(d0) - slack away.
-                    const double lower = std::sqrt(list_d2[j]) - slack;
-                    if (lower > 0.0 && lower * lower > 4.0 * r2) break; // security radius reached
+                    if (list_d2[j] > stop_d2) break; // security radius reached: so are all later and unlisted sites
                     if ((outcome = cut_by(l)) != kGoOn) break;
                 }
                 // The movers, wherever they are: those near k's anchor if that is far enough,
@@ -356,7 +359,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 }
                 const bool empty = outcome == kEmpty;
                 if (empty) continue;
-                if (!any_polygon) cache.seeds[p] = k;
+                if (!any_polygon && cache.seeds[p] != k) cache.seeds[p] = k; // no write (cache line) if unchanged
                 any_polygon = true;
                 RvdPolygon out;
                 out.site = k;
