@@ -225,8 +225,11 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         std::vector<int32_t> candidates;
         // Per-site scratch valid while stamp[site] == current triangle: planar coordinates,
         // computed once per triangle, and whether the site was queued already.
-        std::vector<long> planar_stamp(ns, -1), visited_stamp(ns, -1);
-        std::vector<PlanarSite> planar_of(ns);
+        struct SiteScratch {
+            int32_t planar_stamp = -1, visited_stamp = -1;
+            PlanarSite planar;
+        }; // one cache line holds two
+        std::vector<SiteScratch> scratch_of(ns);
 #pragma omp for schedule(static, 8) // small chunks: triangles hold very different numbers of polygons; static: a fixed summation order
         for (long i = 0; i < nf; ++i) {
             const long p = surface.order[i];
@@ -237,16 +240,17 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
             const Vec u1 = Map(surface.u1.row(p).data()), u2 = Map(surface.u2.row(p).data());
             const Eigen::Vector2d c0(0.0, 0.0), c1((x1 - x0).dot(u1), 0.0), c2((x2 - x0).dot(u1), (x2 - x0).dot(u2));
             auto planar = [&](long s) -> const PlanarSite& {
-                if (planar_stamp[s] != p) {
+                SiteScratch& sc = scratch_of[s];
+                if (sc.planar_stamp != p) {
                     const Vec w = Map(sites.row(s).data()) - x0;
-                    planar_of[s] = PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
-                    planar_stamp[s] = p;
+                    sc.planar = PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
+                    sc.planar_stamp = static_cast<int32_t>(p);
                 }
-                return planar_of[s];
+                return sc.planar;
             };
             auto enqueue = [&](int32_t s) {
-                if (visited_stamp[s] == p) return false;
-                visited_stamp[s] = p;
+                if (scratch_of[s].visited_stamp == p) return false;
+                scratch_of[s].visited_stamp = static_cast<int32_t>(p);
                 queue.push_back(s);
                 return true;
             };
