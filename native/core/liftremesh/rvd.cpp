@@ -124,7 +124,7 @@ struct Staleness {
     std::vector<char> is_mover;    // #S
     double rest = 0.0;             // largest displacement of the other sites
     // Per site k (CSR), the movers m now within `reach` of k's anchor: all those that can cut
-    // a polygon of k of radius R with 2 R + displacement[k] <= reach.
+    // a polygon of k of radius R with 2 R + displacement[k] < reach (nanoflann finds distances < reach).
     double reach = 0.0;
     std::vector<int32_t> near_offsets, near_movers;
 };
@@ -354,7 +354,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 // else all. The polygon only shrinks, so those left out by the radius at this
                 // point could cut nothing either.
                 if (!st.movers.empty() && outcome == kGoOn) {
-                    const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] <= st.reach;
+                    const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] < st.reach; // the search is strict
                     const int32_t* m = near_enough ? &st.near_movers[st.near_offsets[k]] : st.movers.data();
                     const int32_t* end = near_enough ? &st.near_movers[0] + st.near_offsets[k + 1]
                                                      : st.movers.data() + st.movers.size();
