@@ -87,8 +87,8 @@ int resolve_threads(int threads);
 //! The few sites that moved farther than 0.35 times the typical spacing (movers: while the
 //! sites settle, a handful keeps moving) are left out of that bound and checked on their own
 //! against every polygon near them; the tree and lists are rebuilt only once movers are more
-//! than 1/128 of the sites. Optional: the diagram is the same with or without it (up to
-//! rounding).
+//! than max(32, 1/128 of the sites). Optional: the diagram is the same with or without it (up
+//! to rounding).
 struct RvdCache {
     std::shared_ptr<const KdTree> tree; //!< 3D kd-tree over `anchor`
     LiftedPoints anchor;             //!< #S by 3 site positions the lists and tree were made at
