@@ -1,5 +1,6 @@
 #include "liftremesh/boundary_snap.h"
 
+#include "liftremesh/compressed_rows.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 #include "liftremesh/neighbor_search.h"
@@ -79,25 +80,17 @@ public:
         : mesh_(mesh), min_area_ratio_(options.min_area_ratio), min_kappa_(options.min_kappa),
           slot_(static_cast<size_t>(mesh.points.rows()), -1) {
         for (size_t i = 0; i < movable.size(); ++i) slot_[movable[i]] = static_cast<int32_t>(i);
-        // Triangles around each movable vertex, as compressed rows.
-        first_.assign(movable.size() + 1, 0);
+        // Triangles around each movable vertex, and how each was at construction.
+        std::vector<std::pair<int32_t, int32_t>> pairs; // (slot, triangle)
         const Triangles& t = mesh.triangles;
         for (Eigen::Index f = 0; f < t.rows(); ++f)
             for (int j = 0; j < 3; ++j)
-                if (slot_[t(f, j)] >= 0) ++first_[slot_[t(f, j)] + 1];
-        for (size_t i = 0; i < movable.size(); ++i) first_[i + 1] += first_[i];
-        triangles_.resize(first_.back());
-        before_.resize(first_.back());
-        kappa_before_.resize(first_.back());
-        std::vector<long> fill(first_.begin(), first_.end() - 1);
-        for (Eigen::Index f = 0; f < t.rows(); ++f)
-            for (int j = 0; j < 3; ++j)
-                if (slot_[t(f, j)] >= 0) {
-                    const long k = fill[slot_[t(f, j)]]++;
-                    triangles_[k] = static_cast<int32_t>(f);
-                    before_[k] = doubled_normal(static_cast<int32_t>(f));
-                    kappa_before_[k] = kappa(static_cast<int32_t>(f));
-                }
+                if (slot_[t(f, j)] >= 0) pairs.emplace_back(slot_[t(f, j)], static_cast<int32_t>(f));
+        around_ = compress_rows(static_cast<long>(movable.size()), pairs);
+        for (int32_t f : around_.values) {
+            before_.push_back(doubled_normal(f));
+            kappa_before_.push_back(kappa(f));
+        }
     }
 
     //! Puts vertex v at `target` unless a triangle around it would flip, collapse or fall below
@@ -106,11 +99,12 @@ public:
         const int32_t s = slot_[v];
         const Eigen::Vector3d old = position(mesh_, v);
         mesh_.points.row(v) = target.transpose();
-        for (long k = first_[s]; k < first_[s + 1]; ++k) {
-            const Eigen::Vector3d after = doubled_normal(triangles_[k]), &before = before_[k];
+        for (int32_t k = around_.offsets[s]; k < around_.offsets[s + 1]; ++k) {
+            const int32_t f = around_.values[k];
+            const Eigen::Vector3d after = doubled_normal(f), &before = before_[k];
             const bool collapses = after.norm() < min_area_ratio_ * before.norm();
             const bool flips = before.squaredNorm() > 0.0 && after.dot(before) <= 0.0;
-            const bool sliver = kappa(triangles_[k]) < std::min(min_kappa_, kappa_before_[k]);
+            const bool sliver = kappa(f) < std::min(min_kappa_, kappa_before_[k]);
             if (collapses || flips || sliver) {
                 mesh_.points.row(v) = old.transpose();
                 return false;
@@ -133,8 +127,7 @@ private:
     Mesh& mesh_;
     double min_area_ratio_, min_kappa_;
     std::vector<int32_t> slot_;           // per vertex of the mesh: index in `movable`, or -1
-    std::vector<long> first_;             // per movable vertex: its triangles are [first_[i], first_[i + 1])
-    std::vector<int32_t> triangles_;
+    CompressedRows around_;               // per movable vertex (its slot): its triangles
     std::vector<Eigen::Vector3d> before_; // doubled normal of each listed triangle at construction
     std::vector<double> kappa_before_;    // and its kappa
 };

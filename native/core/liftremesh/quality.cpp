@@ -1,6 +1,7 @@
 #include "liftremesh/quality.h"
 
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/compressed_rows.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 
@@ -99,25 +100,20 @@ void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
 //! through edges at the vertex (e.g. two cones touching at their apex): vertex_fans (mesh.h).
 long count_nonmanifold_vertices(const Mesh& mesh) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
-    // Vertex -> incident triangles, compressed (offsets into `incident`).
-    std::vector<int32_t> offsets(static_cast<size_t>(nv) + 1, 0);
+    // Vertex -> incident triangles.
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    pairs.reserve(3 * static_cast<size_t>(nf));
     for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 0; j < 3; ++j) ++offsets[mesh.triangles(f, j) + 1];
-    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-    std::vector<int32_t> incident(static_cast<size_t>(offsets.back()));
-    std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 0; j < 3; ++j) incident[fill[mesh.triangles(f, j)]++] = static_cast<int32_t>(f);
+        for (int j = 0; j < 3; ++j) pairs.emplace_back(mesh.triangles(f, j), static_cast<int32_t>(f));
+    const CompressedRows incident = compress_rows(nv, pairs);
 
     long count = 0;
     std::vector<std::array<int32_t, 3>> around;
     std::vector<int> fan;
     for (Eigen::Index v = 0; v < nv; ++v) {
         around.clear();
-        for (int32_t k = offsets[v]; k < offsets[v + 1]; ++k) {
-            const int32_t f = incident[k];
-            around.push_back({mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)});
-        }
+        for (const int32_t* f = incident.begin(v); f != incident.end(v); ++f)
+            around.push_back({mesh.triangles(*f, 0), mesh.triangles(*f, 1), mesh.triangles(*f, 2)});
         if (vertex_fans(static_cast<int32_t>(v), around, fan) > 1) ++count;
     }
     return count;

@@ -1,5 +1,6 @@
 #include "liftremesh/rvd.h"
 
+#include "liftremesh/compressed_rows.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 #include "liftremesh/neighbor_search.h"
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 
 namespace liftremesh {
@@ -123,10 +123,10 @@ struct Staleness {
     std::vector<int32_t> movers;   // the sites farther than the rebuild distance from it
     std::vector<char> is_mover;    // #S
     double rest = 0.0;             // largest displacement of the other sites
-    // Per site k (CSR), the movers m now within `reach` of k's anchor: all those that can cut
-    // a polygon of k of radius R with 2 R + displacement[k] < reach (nanoflann finds distances < reach).
+    // Per site k, the movers m now within `reach` of k's anchor: all those that can cut a
+    // polygon of k of radius R with 2 R + displacement[k] < reach (nanoflann finds distances < reach).
     double reach = 0.0;
-    std::vector<int32_t> near_offsets, near_movers;
+    CompressedRows near_movers;
 };
 
 // Makes the cache's tree and neighbour lists current for `positions` if too many sites moved
@@ -146,7 +146,6 @@ Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCach
             for (long s = 0; s < ns; ++s)
                 if (!st.is_mover[s]) st.rest = std::max(st.rest, st.displacement[s]);
             st.reach = 3.0 * cache.spacing;
-            st.near_offsets.assign(ns + 1, 0);
             std::vector<std::pair<int32_t, int32_t>> pairs; // (site, mover)
             std::vector<int32_t> found;
             for (int32_t m : st.movers) {
@@ -155,15 +154,10 @@ Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCach
                 for (int32_t k : found)
                     if (k != m && !st.is_mover[k]) pairs.emplace_back(k, m);
             }
-            for (const auto& [k, m] : pairs) ++st.near_offsets[k + 1];
-            for (long k = 0; k < ns; ++k) st.near_offsets[k + 1] += st.near_offsets[k];
-            st.near_movers.resize(pairs.size());
-            std::vector<int32_t> fill(st.near_offsets.begin(), st.near_offsets.end() - 1);
-            for (const auto& [k, m] : pairs) st.near_movers[fill[k]++] = m;
+            st.near_movers = compress_rows(ns, pairs);
             return st;
         }
-        st.movers.clear();
-        st.is_mover.assign(ns, 0);
+        st.movers.clear(); // is_mover is still all zero
     }
     st.displacement = Eigen::VectorXd::Zero(ns);
     cache.anchor = positions;
@@ -355,9 +349,8 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 // point could cut nothing either.
                 if (!st.movers.empty() && outcome == kGoOn) {
                     const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] < st.reach; // the search is strict
-                    const int32_t* m = near_enough ? &st.near_movers[st.near_offsets[k]] : st.movers.data();
-                    const int32_t* end = near_enough ? &st.near_movers[0] + st.near_offsets[k + 1]
-                                                     : st.movers.data() + st.movers.size();
+                    const int32_t* m = near_enough ? st.near_movers.begin(k) : st.movers.data();
+                    const int32_t* end = near_enough ? st.near_movers.end(k) : st.movers.data() + st.movers.size();
                     for (; outcome == kGoOn && m != end; ++m)
                         if (*m != k) outcome = cut_by(*m);
                 }
