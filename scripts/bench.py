@@ -76,20 +76,20 @@ def table(rows):
         for stage, _ in stage_times(row.get("report", {}).get("timings")):
             if stage not in stages:
                 stages.append(stage)
-    head = (["input", "target V", "sites", "iterations"] + ["%s s" % s for s in stages]
+    head = (["input", "target V", "sites", "iterations", "evaluations"] + ["%s s" % s for s in stages]
             + ["wall s", "peak MiB", "kappa min", "kappa mean", "sharp60 out/in", "Hausdorff %", "chi in/out"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
         report = row.get("report")
         if report is None:
-            cells = ([row["name"], str(row["target"]), "failed (exit %d)" % row["rc"], row["error"]]
+            cells = ([row["name"], str(row["target"]), "failed (exit %d)" % row["rc"], row["error"], "-"]
                      + ["-"] * len(stages) + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f")]
                      + ["-"] * 5)
         else:
             times = dict(stage_times(report.get("timings")))
             out = report["output"]
             cells = ([row["name"], str(row["target"]), str(report["sites"]),
-                      str(report["iterations"])]
+                      str(report["iterations"]), str(report.get("evaluations", "-"))]
                      + [fmt(times.get(s), ".2f") for s in stages]
                      + [fmt(row["wall"], ".2f"), fmt(row.get("rss"), ".0f"),
                         fmt(out["kappa_min"], ".3f"), fmt(out["kappa_mean"], ".3f"),

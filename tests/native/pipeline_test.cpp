@@ -78,6 +78,7 @@ TEST(Optimizer, ObjectiveDecreasesEveryIteration) {
     ASSERT_GE(energies.size(), 30u);
     for (size_t i = 1; i < energies.size(); ++i) EXPECT_LE(energies[i], energies[i - 1] * (1 + 1e-12)) << "iteration " << i;
     EXPECT_LT(r.energy_final, 0.7 * r.energy_initial);
+    EXPECT_GE(r.evaluations, r.iterations + 1); // the start point, then at least one per iteration
 }
 
 TEST(Optimizer, TwoPhaseScheduleFollowsSection622) {

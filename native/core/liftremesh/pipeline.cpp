@@ -123,6 +123,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     const OptimizeResult opt = optimize_sites(surface, sites, params.sigma, params.iterations, params.threads, progress);
     report.sites = sites.rows();
     report.iterations = opt.iterations;
+    report.evaluations = opt.evaluations;
     report.energy_initial = opt.energy_initial;
     report.energy_final = opt.energy_final;
     clock.end();

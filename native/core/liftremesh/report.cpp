@@ -105,6 +105,7 @@ std::string to_json(const RemeshReport& report) {
                         {"mean_distance_relative", json_number(report.mean_distance_relative)},
                         {"sites", json_number(report.sites)},
                         {"iterations", json_number(static_cast<long>(report.iterations))},
+                        {"evaluations", json_number(static_cast<long>(report.evaluations))},
                         {"energy_initial", json_number(report.energy_initial)},
                         {"energy_final", json_number(report.energy_final)},
                         {"holes_filled", json_number(report.holes_filled)},

@@ -21,6 +21,7 @@ struct RemeshReport {
     double mean_distance_relative = 0.0; //!< mean sampled distance / bbox_diagonal
     long sites = 0;                      //!< number of sites optimised
     int iterations = 0;                  //!< L-BFGS iterations done
+    int evaluations = 0;                 //!< objective evaluations (diagrams computed), line searches included
     double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)
     double energy_final = 0.0;           //!< objective at the last iterate (its phase's sigma)
     long holes_filled = 0;
