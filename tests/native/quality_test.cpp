@@ -4,6 +4,7 @@
 #include "liftremesh/quality.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <numeric>
@@ -207,6 +208,20 @@ TEST(Quality, HausdorffIsDeterministic) {
     const DistanceStats d3 = hausdorff_distance(a, b, 5000, 12);
     EXPECT_NE(d1.mean, d3.mean); // a different seed draws different points
     EXPECT_THROW(hausdorff_distance(a, Mesh{}), InvalidInput);
+}
+
+TEST(Quality, HausdorffDoesNotDependOnTheThreadCount) {
+    // Samples are drawn per triangle in parallel, distances found in parallel with warm starts.
+    const Mesh a = test::make_icosphere(3, 1.0), b = test::make_torus(0.8, 0.3, 40, 16);
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const DistanceStats one = hausdorff_distance(a, b, 30000);
+    omp_set_num_threads(3);
+    const DistanceStats three = hausdorff_distance(a, b, 30000);
+    omp_set_num_threads(before);
+    EXPECT_EQ(one.a_to_b, three.a_to_b);
+    EXPECT_EQ(one.b_to_a, three.b_to_a);
+    EXPECT_EQ(one.mean, three.mean);
 }
 
 // The facts of ../shared/meshes/SOURCES.md (kappa, boundary and non-manifold edges, to the

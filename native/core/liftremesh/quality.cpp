@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -121,56 +120,84 @@ long count_nonmanifold_vertices(const Mesh& mesh) {
 
 // ---- sampling and distances -------------------------------------------------------------------
 
-//! Uniform double in [0, 1) from the top 53 bits: the same sequence on every standard library.
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+//! splitmix64 (Steele, Lea and Flood, 2014): a small, well-mixed 64-bit generator. Each
+//! triangle draws from a stream of its own, so samples are drawn in parallel and are the same
+//! for every thread count.
+std::uint64_t splitmix64(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
 
-//! The referenced vertices of `mesh` (in index order), then area-uniform random points until
-//! `samples` points in all (none if the vertices already reach it).
-std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, long samples, std::mt19937_64& rng) {
+//! Uniform double in [0, 1) from the top 53 bits.
+double uniform01(std::uint64_t& state) { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; }
+
+//! The referenced vertices of `mesh`, then about `samples` minus that many area-uniform random
+//! points (none if the vertices already reach `samples`), stratified by triangle: each draws
+//! its expected share, the fractional part at random. Vertices and triangles each come along a
+//! Morton curve, so consecutive points are near each other (see distances_to).
+std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, long samples, std::uint64_t seed) {
     const Eigen::Index nf = mesh.triangles.rows();
     std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
     for (Eigen::Index f = 0; f < nf; ++f)
         for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
-    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector3d> vertices;
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
-        if (used[i]) points.push_back(mesh.points.row(i).transpose());
+        if (used[i]) vertices.push_back(mesh.points.row(i).transpose());
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(static_cast<size_t>(std::max<long>(samples, static_cast<long>(vertices.size()))));
+    if (!vertices.empty())
+        for (long i : morton_order(vertices[0].data(), static_cast<long>(vertices.size()), 3)) points.push_back(vertices[i]);
 
-    std::vector<double> cumulative(static_cast<size_t>(nf));
+    std::vector<double> area(static_cast<size_t>(nf));
+    std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
     double total = 0.0;
     for (Eigen::Index f = 0; f < nf; ++f) {
-        const double area = triangle_area(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2));
-        total += std::isfinite(area) ? area : 0.0;
-        cumulative[f] = total;
+        const double a = triangle_area(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2));
+        area[f] = std::isfinite(a) ? a : 0.0;
+        total += area[f];
+        centroids[f] = (corner(mesh, f, 0) + corner(mesh, f, 1) + corner(mesh, f, 2)) / 3.0;
     }
-    if (!(total > 0.0) || !std::isfinite(total)) return points;
     const long extra = samples - static_cast<long>(points.size());
-    for (long s = 0; s < extra; ++s) {
-        const double pick = uniform01(rng) * total;
-        const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), pick);
-        const Eigen::Index f = std::min<Eigen::Index>(it - cumulative.begin(), nf - 1);
-        // Uniform point in a triangle: (1 - sqrt r1) a + sqrt r1 (1 - r2) b + sqrt r1 r2 c.
-        const double r1 = std::sqrt(uniform01(rng)), r2 = uniform01(rng);
-        points.push_back((1.0 - r1) * corner(mesh, f, 0) + r1 * (1.0 - r2) * corner(mesh, f, 1) +
-                         r1 * r2 * corner(mesh, f, 2));
+    if (extra <= 0 || !(total > 0.0) || !std::isfinite(total) || nf == 0) return points;
+    const std::vector<long> order = morton_order(centroids[0].data(), static_cast<long>(nf), 3);
+    auto stream = [&](long f) { return seed * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(f) * 0xD1B54A32D192ED03ull; };
+    std::vector<long> offset(static_cast<size_t>(nf) + 1, static_cast<long>(points.size()));
+    for (Eigen::Index i = 0; i < nf; ++i) {
+        const long f = order[i];
+        std::uint64_t state = stream(f);
+        const double expected = static_cast<double>(extra) * (area[f] / total);
+        const double whole = std::floor(expected);
+        offset[i + 1] = offset[i] + static_cast<long>(whole) + (uniform01(state) < expected - whole ? 1 : 0);
+    }
+    points.resize(static_cast<size_t>(offset[nf]));
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < nf; ++i) {
+        const long f = order[i];
+        std::uint64_t state = stream(f);
+        uniform01(state); // the draw that rounded the count
+        for (long s = offset[i]; s < offset[i + 1]; ++s) {
+            // Uniform point in a triangle: (1 - sqrt r1) a + sqrt r1 (1 - r2) b + sqrt r1 r2 c.
+            const double r1 = std::sqrt(uniform01(state)), r2 = uniform01(state);
+            points[s] = (1.0 - r1) * corner(mesh, f, 0) + r1 * (1.0 - r2) * corner(mesh, f, 1) + r1 * r2 * corner(mesh, f, 2);
+        }
     }
     return points;
 }
 
 //! Distance from each point to the tree's mesh; the loop is parallel, the result deterministic
-//! (each distance is exact). Points are visited along a Morton curve, each query warm-started
-//! by the previous answer of its thread, which lies on the mesh near it.
+//! (each distance is exact). Each query is warm-started by the previous answer of its thread,
+//! which lies on the mesh near it when consecutive points are near each other (sample_surface).
 std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, const AabbTree& tree) {
     std::vector<double> d(points.size());
     const long n = static_cast<long>(points.size());
-    if (n == 0) return d;
-    const std::vector<long> order = morton_order(points[0].data(), n, 3);
 #pragma omp parallel
     {
         bool warm = false;
         Eigen::Vector3d previous;
 #pragma omp for schedule(static)
-        for (long s = 0; s < n; ++s) {
-            const long i = order[s];
+        for (long i = 0; i < n; ++i) {
             const ClosestPoint c = warm ? tree.closest(points[i], previous) : tree.closest(points[i]);
             d[i] = std::sqrt(c.squared_distance);
             previous = c.point;
@@ -199,9 +226,8 @@ MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
 DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples, std::uint64_t seed) {
     check_mesh(a, "first");
     check_mesh(b, "second");
-    std::mt19937_64 rng(seed);
-    const std::vector<Eigen::Vector3d> on_a = sample_surface(a, samples, rng);
-    const std::vector<Eigen::Vector3d> on_b = sample_surface(b, samples, rng);
+    const std::vector<Eigen::Vector3d> on_a = sample_surface(a, samples, 2 * seed);
+    const std::vector<Eigen::Vector3d> on_b = sample_surface(b, samples, 2 * seed + 1);
     const std::vector<double> a_to_b = distances_to(on_a, AabbTree(b));
     const std::vector<double> b_to_a = distances_to(on_b, AabbTree(a));
 

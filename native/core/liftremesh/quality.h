@@ -41,7 +41,8 @@ struct DistanceStats {
 };
 
 //! Two-sided Hausdorff distance, exact point-to-triangle distances from `samples` points on
-//! each mesh (all its vertices first, then area-uniform random points, fixed `seed`).
+//! each mesh (all its vertices first, then area-uniform random points stratified by triangle,
+//! fixed `seed`).
 //! Every referenced vertex is used even when there are more than `samples`. The queries run in
 //! parallel with OpenMP (default thread count; set it with omp_set_num_threads); the result
 //! does not depend on the thread count. Throws InvalidInput (via check_mesh) for an empty mesh,
