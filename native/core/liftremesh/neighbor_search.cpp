@@ -4,6 +4,8 @@
 
 #include <nanoflann.hpp>
 
+#include <limits>
+
 namespace liftremesh {
 
 namespace {
@@ -19,9 +21,46 @@ struct MatrixAdaptor {
     bool kdtree_get_bbox(Box&) const { return false; }
 };
 
+// nanoflann's k-nearest result set, which may start filled (from a hint): a point the search
+// meets again is not added twice. A point dropped from the set cannot come back (its distance
+// is not below the k-th any more), so "added before" is "in the set".
+class HintedKnnResult {
+public:
+    HintedKnnResult(int32_t* idx, double* d2, int capacity) : idx_(idx), d2_(d2), capacity_(capacity) {
+        d2_[capacity_ - 1] = std::numeric_limits<double>::max();
+    }
+    size_t size() const { return static_cast<size_t>(count_); }
+    bool full() const { return count_ == capacity_; }
+    double worstDist() const { return d2_[capacity_ - 1]; }
+    bool addPoint(double dist, int32_t index) {
+        for (int i = 0; i < count_; ++i)
+            if (idx_[i] == index) return true;
+        int i = count_;
+        for (; i > 0 && d2_[i - 1] > dist; --i) // insertion, as in nanoflann's KNNResultSet
+            if (i < capacity_) {
+                d2_[i] = d2_[i - 1];
+                idx_[i] = idx_[i - 1];
+            }
+        if (i < capacity_) {
+            d2_[i] = dist;
+            idx_[i] = index;
+        }
+        if (count_ < capacity_) ++count_;
+        return true; // go on searching
+    }
+
+private:
+    int32_t* idx_;
+    double* d2_;
+    int capacity_;
+    int count_ = 0;
+};
+
 struct TreeBase {
     virtual ~TreeBase() = default;
     virtual int knn(const double* q, int k, int32_t* idx, double* d2) const = 0;
+    virtual int knn_hinted(const double* q, int k, int32_t* idx, double* d2, const int32_t* hint,
+                           int hint_count) const = 0;
     virtual void within(const double* q, double r, std::vector<int32_t>& out) const = 0;
 };
 
@@ -39,6 +78,20 @@ struct Tree final : TreeBase {
     int knn(const double* q, int k, int32_t* idx, double* d2) const override {
         nanoflann::KNNResultSet<double, int32_t> result(static_cast<size_t>(k));
         result.init(idx, d2);
+        index.findNeighbors(result, q, nanoflann::SearchParams());
+        return static_cast<int>(result.size());
+    }
+    int knn_hinted(const double* q, int k, int32_t* idx, double* d2, const int32_t* hint,
+                   int hint_count) const override {
+        HintedKnnResult result(idx, d2, k);
+        for (int h = 0; h < hint_count; ++h) {
+            double dist = 0.0; // summed as nanoflann's L2_Simple_Adaptor does: a point met again compares equal
+            for (int c = 0; c < D; ++c) {
+                const double diff = q[c] - adaptor.kdtree_get_pt(static_cast<size_t>(hint[h]), static_cast<size_t>(c));
+                dist += diff * diff;
+            }
+            if (dist < result.worstDist()) result.addPoint(dist, hint[h]);
+        }
         index.findNeighbors(result, q, nanoflann::SearchParams());
         return static_cast<int>(result.size());
     }
@@ -77,6 +130,12 @@ long KdTree::size() const { return static_cast<long>(impl_->points.rows()); }
 int KdTree::knn(const double* query, int k, int32_t* indices, double* squared_distances) const {
     if (size() == 0 || k <= 0) return 0;
     return impl_->tree->knn(query, k, indices, squared_distances);
+}
+
+int KdTree::knn(const double* query, int k, int32_t* indices, double* squared_distances, const int32_t* hint,
+                int hint_count) const {
+    if (size() == 0 || k <= 0) return 0;
+    return impl_->tree->knn_hinted(query, k, indices, squared_distances, hint, hint_count);
 }
 
 int32_t KdTree::nearest(const double* query) const {

@@ -24,6 +24,12 @@ public:
     //! (less than k only if the tree has fewer points). Thread-safe.
     int knn(const double* query, int k, int32_t* indices, double* squared_distances) const;
 
+    //! The same, warm-started by `hint`: `hint_count` distinct indices of points believed near
+    //! `query` (such as its neighbours a moment ago). Their distance bounds the search from the
+    //! start, so far fewer tree nodes are visited; the answer is the same (ties aside).
+    int knn(const double* query, int k, int32_t* indices, double* squared_distances, const int32_t* hint,
+            int hint_count) const;
+
     //! Index of the nearest point to `query`. Thread-safe.
     int32_t nearest(const double* query) const;
 

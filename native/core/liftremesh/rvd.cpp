@@ -160,6 +160,10 @@ Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCach
         st.movers.clear(); // is_mover is still all zero
     }
     st.displacement = Eigen::VectorXd::Zero(ns);
+    // The lists made at the previous anchor hint the new ones: most neighbours stay neighbours.
+    std::vector<int32_t> previous;
+    const int previous_k = cache.tree && cache.anchor.rows() == ns ? cache.k : 0;
+    if (previous_k > 0) previous.swap(cache.neighbours);
     cache.anchor = positions;
     cache.tree = std::make_shared<const KdTree>(positions);
     const KdTree& tree = *cache.tree;
@@ -169,7 +173,8 @@ Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCach
     const int k = cache.k;
 #pragma omp parallel for num_threads(threads) schedule(static, 256)
     for (long s = 0; s < ns; ++s)
-        tree.knn(positions.row(s).data(), k, &cache.neighbours[s * k], &cache.distances2[s * k]);
+        tree.knn(positions.row(s).data(), k, &cache.neighbours[s * k], &cache.distances2[s * k],
+                 previous_k > 0 ? &previous[s * previous_k] : nullptr, previous_k);
     // Typical spacing: the median distance to the nearest other site.
     std::vector<double> nearest;
     for (long s = 0; s < ns; ++s)
