@@ -52,3 +52,18 @@ TEST(Params, ValidateNamesTheFieldAndTheRange) {
     EXPECT_THROW(parse_mode("sideways"), InvalidInput);
     EXPECT_NO_THROW(RemeshParams().validate());
 }
+
+TEST(Params, VertexCountIsBoundedBothWays) {
+    RemeshParams p;
+    for (int bad : {3, kMaxVertices + 1}) {
+        p.target_vertices = bad;
+        try {
+            p.validate();
+            FAIL() << "vertices = " << bad << " accepted";
+        } catch (const InvalidInput& e) {
+            EXPECT_NE(std::string(e.what()).find("vertices = " + std::to_string(bad)), std::string::npos) << e.what();
+        }
+    }
+    p.target_vertices = kMaxVertices;
+    EXPECT_NO_THROW(p.validate());
+}

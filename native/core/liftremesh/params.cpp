@@ -36,7 +36,8 @@ void require(bool ok, const char* field, T value, const char* expected) {
 } // namespace
 
 void RemeshParams::validate() const {
-    require(target_vertices >= 4 || target_edge_length > 0.0, "vertices", target_vertices, "an integer >= 4");
+    require((target_vertices >= 4 && target_vertices <= kMaxVertices) || target_edge_length > 0.0, "vertices",
+            target_vertices, ("an integer in [4, " + std::to_string(kMaxVertices) + "]").c_str());
     require(std::isfinite(target_edge_length) && target_edge_length >= 0.0, "edge_length", target_edge_length,
             "a length > 0 (or 0 to use the vertex count)");
     require(std::isfinite(sigma) && sigma >= 1.0 && sigma <= 100.0, "sigma", sigma, "a number in [1, 100]");
@@ -49,7 +50,7 @@ void RemeshParams::validate() const {
 
 const std::vector<ParameterInfo>& parameter_table() {
     static const std::vector<ParameterInfo> table = {
-        {"vertices", "N", "", "6000", "target number of output vertices (sites)"},
+        {"vertices", "N", "", "6000", "target number of output vertices (sites), 4 to 20000000"},
         {"edge_length", "H", "h", "unset", "target edge length in input units; replaces --vertices"},
         {"mode", "MODE", "", "isotropic", "isotropic (with local density) or anisotropic; sets nu and delta defaults"},
         {"sigma", "S", "sigma", "5", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"},

@@ -15,12 +15,16 @@ namespace liftremesh {
 //! the directions of low curvature (Section 2.5).
 enum class Mode { Isotropic, Anisotropic };
 
+//! Most output vertices one remeshing may ask for, by count or by edge length (the memory it
+//! needs, about 1.2 kB a vertex, is checked against the machine's too: see memory_budget.h).
+constexpr int kMaxVertices = 20'000'000;
+
 const char* to_string(Mode mode);
 //! Parses "isotropic" / "anisotropic"; throws InvalidInput naming the value otherwise.
 Mode parse_mode(const std::string& text);
 
 struct RemeshParams {
-    //! Target number of output vertices (= number of sites). Range >= 4. Default 6000.
+    //! Target number of output vertices (= number of sites). Range [4, kMaxVertices]. Default 6000.
     //! Ignored when target_edge_length > 0.
     int target_vertices = 6000;
     //! Target edge length h in input units; > 0 replaces target_vertices by

@@ -5,6 +5,7 @@
 #include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/hole_filling.h"
+#include "liftremesh/memory_budget.h"
 #include "liftremesh/mesh_io.h"
 #include "liftremesh/neighbor_search.h"
 #include "liftremesh/normals.h"
@@ -22,8 +23,6 @@
 namespace liftremesh {
 
 namespace {
-
-constexpr long kMaxSites = 20'000'000;
 
 // Times stages into the report and gives the caller a chance to cancel between them.
 class StageClock {
@@ -82,10 +81,10 @@ long target_site_count(const RemeshParams& params, double area) {
     // An equilateral mesh of edge h has about 2 triangles per vertex: area sqrt(3)/2 h^2 per vertex.
     const double h = params.target_edge_length;
     const double n = std::round(area / (std::sqrt(3.0) / 2.0 * h * h));
-    if (!(n >= 4.0) || n > static_cast<double>(kMaxSites)) {
+    if (!(n >= 4.0) || n > static_cast<double>(kMaxVertices)) {
         std::ostringstream message;
         message << "edge_length = " << h << " gives " << n << " vertices on this surface of area " << area
-                << ": expected an edge length giving 4 to " << kMaxSites << " vertices";
+                << ": expected an edge length giving 4 to " << kMaxVertices << " vertices";
         throw InvalidInput(message.str());
     }
     return static_cast<long>(n);
@@ -104,6 +103,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     remove_unreferenced_vertices(input);
     if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
     const long sites_wanted = target_site_count(params, surface_area(input));
+    check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
     report.input = measure_quality(input);
     report.bbox_diagonal = bounding_box_diagonal(input.points);
     const UnitBallTransform to_unit = unit_ball_transform(input); // Section 5.1
