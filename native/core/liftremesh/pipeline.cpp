@@ -10,6 +10,7 @@
 #include "liftremesh/neighbor_search.h"
 #include "liftremesh/normals.h"
 #include "liftremesh/optimizer.h"
+#include "liftremesh/patch_refinement.h"
 #include "liftremesh/quality.h"
 #include "liftremesh/rdt.h"
 #include "liftremesh/repair.h"
@@ -141,7 +142,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     report.triangles_removed = repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
     if (params.fill_holes) {
         const double spacing = std::sqrt(surface_area(unit) / (std::sqrt(3.0) / 2.0 * sites_wanted));
+        const Eigen::Index first_fill = out.triangles.rows();
         report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
+        refine_patches(out, first_fill, spacing); // vertices inside the patches, which the paper leaves empty
     }
     if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
     report.edges_collapsed = collapse_short_edges(out);
