@@ -54,7 +54,7 @@ struct RemeshParams {
     //! Worker threads for the restricted Voronoi diagram and the objective; 0 = all cores.
     int threads = 0;
     //! Fill the holes of the restricted Delaunay triangulation that the input does not have
-    //! (Section 5.2.2). Default true.
+    //! (Section 5.2.2), with vertices added inside the patches (patch_refinement.h). Default true.
     bool fill_holes = true;
 
     //! The defaults of Section 6.1 for a mode (nu and delta depend on it).
