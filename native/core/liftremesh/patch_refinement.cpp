@@ -59,7 +59,8 @@ public:
             const int t1 = use[0].tri, t2 = use[1].tri;
             if (touched[t1] || touched[t2]) continue;
             const int32_t a = tris_[t1][use[0].j], b = tris_[t1][(use[0].j + 1) % 3], c = tris_[t1][(use[0].j + 2) % 3];
-            const int32_t d = tris_[t2][(use[1].j + 2) % 3]; // t2 runs b -> a -> d
+            if (tris_[t2][use[1].j] != b) continue; // t2 must run b -> a -> d (orientation)
+            const int32_t d = tris_[t2][(use[1].j + 2) % 3];
             const auto m = static_cast<int32_t>(points_.size());
             points_.push_back(0.5 * (points_[a] + points_[b]));
             tris_[t1] = {a, m, c};
@@ -91,6 +92,7 @@ public:
                 const int t1 = use[0].tri, t2 = use[1].tri;
                 if (touched[t1] || touched[t2]) continue;
                 const int32_t a = tris_[t1][use[0].j], b = tris_[t1][(use[0].j + 1) % 3], c = tris_[t1][(use[0].j + 2) % 3];
+                if (tris_[t2][use[1].j] != b) continue; // t2 must run b -> a -> d (orientation)
                 const int32_t d = tris_[t2][(use[1].j + 2) % 3];
                 if (c == d || edges.count(edge_key(c, d))) continue;
                 // The quad a -> d -> b -> c: the new triangles keep its orientation.
