@@ -40,3 +40,41 @@ TEST(EdgeCollapse, RefusesCollapsesThatBreakTheLinkCondition) {
     EXPECT_EQ(collapse_short_edges(m, 10.0), 0);
     EXPECT_EQ(m.triangles.rows(), 4);
 }
+
+TEST(EdgeCollapse, NeverJoinsTwoBoundaryVerticesThroughTheInside) {
+    // A strip one cell wide: every rung joins its two boundaries. Rung 5 is pinched to a short
+    // edge; cells 4 and 5 are split by diagonals from its ends, the others fanned around a middle
+    // vertex (so the vertices opposite the rung have four triangles). Collapsing the rung would
+    // join the two boundaries at one vertex: a non-manifold vertex, the strip cut in two.
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    for (int i = 0; i <= 10; ++i) {
+        p.emplace_back(i, 0.0, 0.0);
+        p.emplace_back(i, i == 5 ? 0.04 : 1.0, 0.0);
+    }
+    for (int32_t i = 0; i < 10; ++i) {
+        const int32_t a = 2 * i, b = 2 * i + 2, c = 2 * i + 3, d = 2 * i + 1; // counter-clockwise
+        if (i == 4) {
+            f.push_back({a, b, d});
+            f.push_back({d, b, c});
+        } else if (i == 5) {
+            f.push_back({a, b, c});
+            f.push_back({a, c, d});
+        } else {
+            const auto m = static_cast<int32_t>(p.size());
+            p.push_back((p[a] + p[b] + p[c] + p[d]) / 4.0);
+            f.push_back({a, b, m});
+            f.push_back({b, c, m});
+            f.push_back({c, d, m});
+            f.push_back({d, a, m});
+        }
+    }
+    Mesh m = test::make_mesh(p, f);
+    const test::Topology before = test::topology(m);
+    ASSERT_TRUE(before.oriented_manifold());
+    collapse_short_edges(m);
+    const test::Topology after = test::topology(m);
+    EXPECT_EQ(after.nonmanifold_vertices, 0);
+    EXPECT_EQ(after.chi, before.chi);
+    EXPECT_EQ(after.boundary_edges, before.boundary_edges);
+}

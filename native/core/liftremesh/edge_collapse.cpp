@@ -91,6 +91,13 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
     if (candidates.empty()) return 0;
     std::sort(candidates.begin(), candidates.end());
 
+    // On an open surface, an interior edge between two boundary vertices must stay: collapsing
+    // it joins the two boundaries at one vertex (the link condition with the boundary's virtual
+    // vertex).
+    std::vector<char> on_boundary(static_cast<size_t>(mesh.points.rows()), 0);
+    for (const EdgeCount& e : edges)
+        if (e.count == 1) on_boundary[e.a] = on_boundary[e.b] = 1;
+
     Adjacency adj;
     adj.triangles_of.resize(mesh.points.rows());
     adj.alive.assign(nf, 1);
@@ -110,6 +117,7 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
                 if (v != a && v != b) opposite.push_back(v);
         }
         if (shared.size() != 2 || opposite[0] == opposite[1]) continue;
+        if (on_boundary[a] && on_boundary[b]) continue;
         const std::vector<int32_t> na = neighbours(mesh, adj, a), nb = neighbours(mesh, adj, b);
         std::vector<int32_t> common;
         std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
@@ -143,6 +151,7 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
             adj.triangles_of[kept].push_back(f);
         }
         adj.triangles_of[gone].clear();
+        on_boundary[kept] = on_boundary[kept] || on_boundary[gone];
         ++collapsed;
     }
     if (collapsed == 0) return 0;
