@@ -13,10 +13,6 @@ from . import native
 from . import parameters
 
 
-# A result farther than this from its source (Hausdorff / diagonal) gets a warning.
-FAR_FROM_SOURCE = 0.01
-
-
 class Result:
     """A remeshed surface: `mesh` (Mesh.Mesh, in document coordinates), `report` (dict, the
     fields of the command-line tool's JSON report) and `warnings` (report_warnings())."""
@@ -30,20 +26,8 @@ class Result:
 def report_warnings(report):
     """What a user should know about a result that is not a faithful copy of its source: another
     topology (parts thinner than the target edge length merge or break), new boundary edges, or a
-    large distance. Sentences; empty when all is well."""
-    source, output = report.get("input", {}), report.get("output", {})
-    found = []
-    if output.get("euler_characteristic") != source.get("euler_characteristic"):
-        found.append("the result's topology differs from the source's (Euler characteristic %s, source %s): "
-                     "parts thinner than the target edge length merged or broke; ask for more vertices or a "
-                     "smaller edge length" % (output.get("euler_characteristic"), source.get("euler_characteristic")))
-    if output.get("boundary_edges", 0) > source.get("boundary_edges", 0):
-        found.append("the result has %d boundary edges, the source %d"
-                     % (output.get("boundary_edges", 0), source.get("boundary_edges", 0)))
-    if (report.get("hausdorff_relative") or 0.0) > FAR_FROM_SOURCE:
-        found.append("the result is up to %.2g %% of the bounding-box diagonal away from the source"
-                     % (100.0 * report["hausdorff_relative"]))
-    return found
+    large distance. Sentences, from the core's report (its "warnings"); empty when all is well."""
+    return list(report.get("warnings") or [])
 
 
 def mesh_to_arrays(mesh):

@@ -67,6 +67,8 @@ int main(int argc, char** argv) {
                          result.report.hausdorff_relative, q.euler_characteristic,
                          result.report.input.euler_characteristic);
         }
+        for (const std::string& warning : result.report.warnings) // shown even with --quiet
+            std::fprintf(stderr, "liftremesh: warning: %s\n", warning.c_str());
         return 0;
     } catch (const InvalidInput& e) {
         return fail(e.what(), 2);

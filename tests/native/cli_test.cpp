@@ -112,3 +112,15 @@ TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
     }
     EXPECT_FALSE(fs::exists(out)); // nothing is written when the run fails
 }
+
+TEST_F(Cli, WarnsWhenTheSizeIsTooCoarseForTheShape) {
+    // A thin torus (tube radius 0.05) at 60 vertices cannot keep its topology: the mesh is still
+    // written, and stderr says why it is not a copy of the input, even with --quiet.
+    const fs::path in = dir / "torus.off", out = dir / "out.off";
+    write_mesh(in.string(), test::make_torus(1.0, 0.05, 48, 12));
+    const CliRun r = run(in.string() + " " + out.string() + " --vertices 60 --iterations 20 --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    EXPECT_EQ(r.err.rfind("liftremesh: warning: the result's topology differs from the source's", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("ask for more vertices"), std::string::npos) << r.err;
+}

@@ -43,7 +43,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "holes_filled", "triangles_removed", "edges_collapsed",
-          "boundary_vertices_snapped", "timings"})
+          "boundary_vertices_snapped", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
@@ -69,4 +69,22 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     EXPECT_EQ(json.front(), '{');
     EXPECT_EQ(json.substr(json.size() - 2), "}\n");
     EXPECT_EQ(json.find(",\n}"), std::string::npos);
+}
+
+TEST(Report, WarnsOfAnotherTopologyNewBoundaryAndALargeDistance) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = 2;
+    r.hausdorff_relative = 0.004;
+    EXPECT_TRUE(report_warnings(r).empty());
+    EXPECT_NE(to_json(r).find("\"warnings\": []"), std::string::npos) << to_json(r);
+
+    r.output.euler_characteristic = -16;
+    r.output.boundary_edges = 12;
+    r.hausdorff_relative = 0.175;
+    r.warnings = report_warnings(r);
+    ASSERT_EQ(r.warnings.size(), 3u);
+    EXPECT_NE(r.warnings[0].find("Euler characteristic -16, source 2"), std::string::npos) << r.warnings[0];
+    EXPECT_NE(r.warnings[1].find("12 boundary edges, the source 0"), std::string::npos) << r.warnings[1];
+    EXPECT_NE(r.warnings[2].find("18 %"), std::string::npos) << r.warnings[2];
+    EXPECT_NE(to_json(r).find("\"warnings\": [\"the result's topology differs"), std::string::npos) << to_json(r);
 }

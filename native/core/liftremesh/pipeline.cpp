@@ -160,6 +160,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     report.hausdorff_relative = distance.hausdorff / report.bbox_diagonal;
     report.mean_distance_relative = distance.mean / report.bbox_diagonal;
     clock.end();
+    report.warnings = report_warnings(report);
     return result;
 }
 

@@ -95,7 +95,33 @@ std::string json_timings(const std::vector<StageTime>& timings, int indent) {
     return json_object(members, indent);
 }
 
+std::string json_strings(const std::vector<std::string>& items) {
+    std::string out = "[";
+    for (size_t i = 0; i < items.size(); ++i) out += (i > 0 ? ", " : "") + json_string(items[i]);
+    return out + "]";
+}
+
 } // namespace
+
+std::vector<std::string> report_warnings(const RemeshReport& report) {
+    std::vector<std::string> found;
+    const MeshQuality &in = report.input, &out = report.output;
+    if (out.euler_characteristic != in.euler_characteristic)
+        found.push_back("the result's topology differs from the source's (Euler characteristic " +
+                        std::to_string(out.euler_characteristic) + ", source " + std::to_string(in.euler_characteristic) +
+                        "): parts thinner than the target edge length merged or broke; ask for more vertices or a "
+                        "smaller edge length");
+    if (out.boundary_edges > in.boundary_edges)
+        found.push_back("the result has " + std::to_string(out.boundary_edges) + " boundary edges, the source " +
+                        std::to_string(in.boundary_edges));
+    if (report.hausdorff_relative > kFarFromInput) {
+        char text[160];
+        std::snprintf(text, sizeof text, "the result is up to %.2g %% of the bounding-box diagonal away from the source",
+                      100.0 * report.hausdorff_relative);
+        found.emplace_back(text);
+    }
+    return found;
+}
 
 std::string to_json(const RemeshReport& report) {
     return json_object({{"input", json_quality(report.input, 2)},
@@ -112,7 +138,8 @@ std::string to_json(const RemeshReport& report) {
                         {"triangles_removed", json_number(report.triangles_removed)},
                         {"edges_collapsed", json_number(report.edges_collapsed)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
-                        {"timings", json_timings(report.timings, 2)}},
+                        {"timings", json_timings(report.timings, 2)},
+                        {"warnings", json_strings(report.warnings)}},
                        0) +
            "\n";
 }

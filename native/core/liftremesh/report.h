@@ -29,7 +29,19 @@ struct RemeshReport {
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     std::vector<StageTime> timings;
+    //! What a user should know about a result that is not a faithful copy of its input, as
+    //! sentences (report_warnings()); empty when all is well.
+    std::vector<std::string> warnings;
 };
+
+//! Relative Hausdorff distance above which the result is reported as far from its input (1%).
+constexpr double kFarFromInput = 0.01;
+
+//! The warnings of a finished report: another topology than the input's (parts thinner than
+//! the target edge length merge or break: "Problems may happen if the number of samples is
+//! insufficient, in regions where S is thin", Section 2.2), new boundary edges, or a Hausdorff
+//! distance above kFarFromInput.
+std::vector<std::string> report_warnings(const RemeshReport& report);
 
 //! The report as a JSON object (keys documented in the README), indented by two spaces and
 //! ending with a newline. Doubles have 9 significant digits; NaN and infinities are written
