@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace liftremesh;
 using namespace liftremesh::test;
 
@@ -47,7 +49,7 @@ TEST(PatchRefinement, StaircaseHoleInAGridGetsWellShapedTriangles) {
     const double cdt_kappa = min_kappa(m, first);
     const Mesh filled = m;
 
-    const long added = refine_patches(m, first, 0.5);
+    const long added = refine_patches(m, first, 0.5, 1000);
     EXPECT_GT(added, 50); // about hole area / (sqrt(3)/2 h^2) = 130 interior vertices at most
     EXPECT_EQ(m.points.topRows(filled.points.rows()), filled.points); // no vertex of before moves
     EXPECT_EQ(m.triangles.topRows(first), filled.triangles.topRows(first)); // nor a triangle before the patch
@@ -67,7 +69,7 @@ TEST(PatchRefinement, CapHoleOnASphereIsClosedFacingOutward) {
     const Eigen::Index first = m.triangles.rows();
     ASSERT_EQ(fill_holes(m), 1);
     const double h = 2.0 * std::asin(0.5 * (corner(m, 0, 1) - corner(m, 0, 0)).norm()); // about the mesh's edge
-    EXPECT_GT(refine_patches(m, first, h), 0);
+    EXPECT_GT(refine_patches(m, first, h, 1000), 0);
     const Topology t = topology(m);
     EXPECT_TRUE(t.closed_oriented_manifold());
     EXPECT_EQ(t.chi, 2);
@@ -78,9 +80,27 @@ TEST(PatchRefinement, CapHoleOnASphereIsClosedFacingOutward) {
 TEST(PatchRefinement, NothingToRefineAndBadArguments) {
     Mesh m = make_icosphere(1);
     const Mesh before = m;
-    EXPECT_EQ(refine_patches(m, m.triangles.rows(), 0.1), 0);
+    EXPECT_EQ(refine_patches(m, m.triangles.rows(), 0.1, 1000), 0);
     EXPECT_EQ(m.points, before.points);
     EXPECT_EQ(m.triangles, before.triangles);
-    EXPECT_THROW(refine_patches(m, m.triangles.rows() + 1, 0.1), InvalidInput);
-    EXPECT_THROW(refine_patches(m, 0, 0.0), InvalidInput);
+    EXPECT_THROW(refine_patches(m, m.triangles.rows() + 1, 0.1, 1000), InvalidInput);
+    EXPECT_THROW(refine_patches(m, 0, 0.0, 1000), InvalidInput);
+}
+
+TEST(PatchRefinement, AddsNoMoreVerticesThanAllowed) {
+    const Mesh square = make_square(10.0, 20);
+    Mesh m = with_hole(square, [](const Eigen::Vector3d& c) { return (c - Eigen::Vector3d(5, 5, 0)).norm() < 3.0; });
+    const Eigen::Index first = m.triangles.rows();
+    const long before = m.points.rows();
+    ASSERT_EQ(fill_holes(m,
+                         [&](const std::vector<int32_t>& loop) { // not the square's own border
+                             return std::none_of(loop.begin(), loop.end(), [&](int32_t v) {
+                                 return m.points(v, 0) == 0.0 || m.points(v, 0) == 10.0;
+                             });
+                         }),
+              1);
+    EXPECT_EQ(refine_patches(m, first, 0.5, 20), 20);
+    EXPECT_EQ(m.points.rows(), before + 20);
+    EXPECT_TRUE(topology(m).oriented_manifold());
+    EXPECT_EQ(refine_patches(m, first, 0.5, 0), 0); // nothing more to add: flips and smoothing only
 }

@@ -40,7 +40,7 @@ public:
     // Splits the edges two patch triangles share that are longer than 4/3 h, or longer than
     // h / 2 and opposite an angle above 120 degrees (a sliver's long side), longest first; a
     // triangle is split once a round. Returns whether any edge was split.
-    bool split_long_edges(double h) {
+    bool split_long_edges(double h, long max_added) {
         std::vector<std::pair<double, uint64_t>> candidates;
         const auto uses = edge_uses();
         for (const auto& [key, use] : uses) {
@@ -58,6 +58,7 @@ public:
             const auto& use = uses.at(key);
             const int t1 = use[0].tri, t2 = use[1].tri;
             if (touched[t1] || touched[t2]) continue;
+            if (added() >= max_added) break;
             const int32_t a = tris_[t1][use[0].j], b = tris_[t1][(use[0].j + 1) % 3], c = tris_[t1][(use[0].j + 2) % 3];
             if (tris_[t2][use[1].j] != b) continue; // t2 must run b -> a -> d (orientation)
             const int32_t d = tris_[t2][(use[1].j + 2) % 3];
@@ -192,7 +193,7 @@ private:
 
 } // namespace
 
-long refine_patches(Mesh& mesh, Eigen::Index first, double h, int rounds) {
+long refine_patches(Mesh& mesh, Eigen::Index first, double h, long max_added, int rounds) {
     check_indices(mesh, "refine_patches");
     if (first < 0 || first > mesh.triangles.rows())
         throw InvalidInput("refine_patches: first patch triangle " + std::to_string(first) + " is out of range");
@@ -200,7 +201,7 @@ long refine_patches(Mesh& mesh, Eigen::Index first, double h, int rounds) {
     if (first == mesh.triangles.rows()) return 0;
     Patch patch(mesh, first);
     for (int round = 0; round < rounds; ++round) {
-        const bool split = patch.split_long_edges(h);
+        const bool split = patch.split_long_edges(h, max_added);
         patch.flip_edges();
         patch.smooth(3);
         if (!split) break;

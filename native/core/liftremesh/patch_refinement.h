@@ -18,8 +18,10 @@ namespace liftremesh {
 //!   its triangles by more than 30 degrees is not made).
 //! Vertices that existed before (the loops, the rest of the mesh) never move and triangles
 //! before `first` are untouched; added vertices are appended. The mesh stays an oriented
-//! manifold with the same Euler characteristic. Returns the number of vertices added.
+//! manifold with the same Euler characteristic. At most `max_added` vertices are added (splits
+//! stop there): huge patches mean the triangulation failed (too few vertices for thin parts),
+//! and the vertex count should stay near what was asked. Returns the number of vertices added.
 //! Throws InvalidInput if `first` is out of range, h is not positive or an index is.
-long refine_patches(Mesh& mesh, Eigen::Index first, double h, int rounds = 6);
+long refine_patches(Mesh& mesh, Eigen::Index first, double h, long max_added, int rounds = 6);
 
 } // namespace liftremesh
