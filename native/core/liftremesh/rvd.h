@@ -98,12 +98,17 @@ struct RvdCache {
     double spacing = 0.0;            //!< median distance from a site to its nearest one, at `anchor`
     double rebuild_distance = 0.0;   //!< sites farther than this from `anchor` are movers
     std::vector<int32_t> seeds;      //!< #F a site whose cell met the triangle last time, or -1
+    //! #F, in processing order (surface.order): the work each triangle took last time (polygons
+    //! and bisector tests), which splits the next diagram's triangles evenly between threads.
+    std::vector<int32_t> work;
     long rebuilds = 0;               //!< how many times the lists were made (for benchmarks)
 };
 
 //! Computes the diagram of `sites` (#S by d, d = surface.dimension()) and visits its polygons.
-//! Visits happen concurrently from several threads (one triangle's polygons on one thread, in a
-//! fixed order for a given thread count): the visitor must write only per-thread state.
+//! Visits happen concurrently from several threads: each thread takes a contiguous run of the
+//! triangles in processing order (even work, as measured by the cache's last diagram, or even
+//! counts), and visits each triangle's polygons in a fixed order, so that the same calls with
+//! the same thread count visit the same way. The visitor must write only per-thread state.
 //! `cache` (may be null) carries neighbour lists from one call to the next, see RvdCache.
 void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit,
                  RvdCache* cache = nullptr);
