@@ -6,6 +6,9 @@
 #include <string>
 
 #if defined(_WIN32)
+#ifndef NOMINMAX
+#define NOMINMAX // no min/max macros
+#endif
 #include <windows.h>
 #else
 #include <unistd.h>
