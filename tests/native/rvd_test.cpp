@@ -107,3 +107,30 @@ TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
         EXPECT_EQ(cache.rebuilds - rebuilds, moved > 32 ? 1 : 0) << moved << " sites moved since the lists were made";
     }
 }
+
+// The triangles are split into one run per requested thread; a smaller team (here a nested
+// region, which the runtime gives one thread) must still cover every run. With a cache the
+// runs follow the work measured on the last diagram: the diagram stays the same.
+TEST(CellAreas, EveryTriangleIsCoveredWhateverTheTeamAndTheSplit) {
+    const Mesh m = test::make_torus(0.6, 0.25, 30, 14);
+    const LiftedSurface s = lifted(m, 0.05, 0.0);
+    const LiftedPoints v = test::sites_near(s, 300, 0.01, 5);
+    const double expected = lifted_area(s);
+    Eigen::VectorXd nested;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+        nested = restricted_cell_areas(s, v, 3);
+    }
+    EXPECT_NEAR(nested.sum(), expected, 1e-9 * expected);
+
+    const Eigen::VectorXd reference = restricted_cell_areas(s, v, 1);
+    RvdCache cache;
+    for (int call = 0; call < 3; ++call) { // the first call splits by count, the next ones by work
+        std::vector<Eigen::VectorXd> per_thread(3, Eigen::VectorXd::Zero(v.rows()));
+        compute_rvd(s, v, 3, [&](int t, const RvdPolygon& p) { per_thread[t][p.site] += polygon_area(p); }, &cache);
+        const Eigen::VectorXd areas = per_thread[0] + per_thread[1] + per_thread[2];
+        EXPECT_LT((areas - reference).cwiseAbs().maxCoeff(), 1e-12 * expected) << "call " << call;
+    }
+    EXPECT_EQ(static_cast<long>(cache.work.size()), static_cast<long>(s.triangles.rows()));
+}
