@@ -58,11 +58,16 @@ std::string json_object(const Members& members, int indent) {
     return out + std::string(static_cast<size_t>(indent), ' ') + "}";
 }
 
+//! A JSON array on one line, each item written by `format` (json_number, json_string).
+template <class Items, class Format>
+std::string json_array(const Items& items, Format format) {
+    std::string out = "[";
+    for (const auto& item : items) out += (out.size() > 1 ? ", " : "") + format(item);
+    return out + "]";
+}
+
 std::string json_quality(const MeshQuality& q, int indent) {
-    std::string histogram = "[";
-    for (size_t i = 0; i < q.kappa_histogram.size(); ++i)
-        histogram += (i > 0 ? ", " : "") + json_number(q.kappa_histogram[i]);
-    histogram += "]";
+    const std::string histogram = json_array(q.kappa_histogram, [](long n) { return json_number(n); });
     return json_object({{"vertices", json_number(q.vertices)},
                         {"triangles", json_number(q.triangles)},
                         {"kappa_min", json_number(q.kappa_min)},
@@ -93,12 +98,6 @@ std::string json_timings(const std::vector<StageTime>& timings, int indent) {
     Members members;
     for (const auto& [stage, seconds] : merged) members.emplace_back(stage, json_number(seconds));
     return json_object(members, indent);
-}
-
-std::string json_strings(const std::vector<std::string>& items) {
-    std::string out = "[";
-    for (size_t i = 0; i < items.size(); ++i) out += (i > 0 ? ", " : "") + json_string(items[i]);
-    return out + "]";
 }
 
 } // namespace
@@ -139,7 +138,7 @@ std::string to_json(const RemeshReport& report) {
                         {"edges_collapsed", json_number(report.edges_collapsed)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
                         {"timings", json_timings(report.timings, 2)},
-                        {"warnings", json_strings(report.warnings)}},
+                        {"warnings", json_array(report.warnings, json_string)}},
                        0) +
            "\n";
 }
