@@ -4,8 +4,6 @@
 
 #include <nanoflann.hpp>
 
-#include <limits>
-
 namespace liftremesh {
 
 namespace {
@@ -26,34 +24,21 @@ struct MatrixAdaptor {
 // is not below the k-th any more), so "added before" is "in the set".
 class HintedKnnResult {
 public:
-    HintedKnnResult(int32_t* idx, double* d2, int capacity) : idx_(idx), d2_(d2), capacity_(capacity) {
-        d2_[capacity_ - 1] = std::numeric_limits<double>::max();
+    HintedKnnResult(int32_t* idx, double* d2, int capacity) : idx_(idx), set_(static_cast<size_t>(capacity)) {
+        set_.init(idx, d2);
     }
-    size_t size() const { return static_cast<size_t>(count_); }
-    bool full() const { return count_ == capacity_; }
-    double worstDist() const { return d2_[capacity_ - 1]; }
+    size_t size() const { return set_.size(); }
+    bool full() const { return set_.full(); }
+    double worstDist() const { return set_.worstDist(); }
     bool addPoint(double dist, int32_t index) {
-        for (int i = 0; i < count_; ++i)
-            if (idx_[i] == index) return true;
-        int i = count_;
-        for (; i > 0 && d2_[i - 1] > dist; --i) // insertion, as in nanoflann's KNNResultSet
-            if (i < capacity_) {
-                d2_[i] = d2_[i - 1];
-                idx_[i] = idx_[i - 1];
-            }
-        if (i < capacity_) {
-            d2_[i] = dist;
-            idx_[i] = index;
-        }
-        if (count_ < capacity_) ++count_;
-        return true; // go on searching
+        for (size_t i = 0; i < set_.size(); ++i)
+            if (idx_[i] == index) return true; // go on searching
+        return set_.addPoint(dist, index);
     }
 
 private:
-    int32_t* idx_;
-    double* d2_;
-    int capacity_;
-    int count_ = 0;
+    const int32_t* idx_;
+    nanoflann::KNNResultSet<double, int32_t> set_;
 };
 
 struct TreeBase {
