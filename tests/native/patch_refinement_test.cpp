@@ -15,6 +15,7 @@ using namespace liftremesh::test;
 
 namespace {
 
+// Area of the triangles [first, #F): a patch appended by fill_holes.
 double area_from(const Mesh& m, Eigen::Index first) {
     double a = 0.0;
     for (Eigen::Index f = first; f < m.triangles.rows(); ++f)
@@ -31,21 +32,29 @@ Mesh with_hole(const Mesh& m, Inside inside) {
     return without_triangles(m, drop);
 }
 
+// A 10 x 10 square grid of edge 0.5 with a round hole of radius 3 cut out of its middle.
+Mesh grid_with_round_hole() {
+    return with_hole(make_square(10.0, 20),
+                     [](const Eigen::Vector3d& c) { return (c - Eigen::Vector3d(5, 5, 0)).norm() < 3.0; });
+}
+
+// Fills the holes of a grid_with_round_hole() but the square's own border (x = 0 or 10).
+long fill_inner_holes(Mesh& m) {
+    return fill_holes(m, [&](const std::vector<int32_t>& loop) {
+        return std::none_of(loop.begin(), loop.end(),
+                            [&](int32_t v) { return m.points(v, 0) == 0.0 || m.points(v, 0) == 10.0; });
+    });
+}
+
 } // namespace
 
 // A round hole cut out of a grid has a staircase loop: runs of collinear vertices, which a
 // triangulation of the loop alone can only join by long thin triangles.
 TEST(PatchRefinement, StaircaseHoleInAGridGetsWellShapedTriangles) {
-    const Mesh square = make_square(10.0, 20); // edge 0.5
-    Mesh m = with_hole(square, [](const Eigen::Vector3d& c) { return (c - Eigen::Vector3d(5, 5, 0)).norm() < 3.0; });
+    Mesh m = grid_with_round_hole();
     const Eigen::Index first = m.triangles.rows();
-    const double hole_area = area_from(square, 0) - area_from(m, 0);
-    const auto outer = [&](const std::vector<int32_t>& loop) { // leave the square's own border open
-        for (int32_t v : loop)
-            if (m.points(v, 0) == 0.0 || m.points(v, 0) == 10.0) return false;
-        return true;
-    };
-    ASSERT_EQ(fill_holes(m, outer), 1);
+    const double hole_area = surface_area(make_square(10.0, 20)) - surface_area(m);
+    ASSERT_EQ(fill_inner_holes(m), 1);
     const double cdt_kappa = min_kappa(m, first);
     const Mesh filled = m;
 
@@ -88,17 +97,10 @@ TEST(PatchRefinement, NothingToRefineAndBadArguments) {
 }
 
 TEST(PatchRefinement, AddsNoMoreVerticesThanAllowed) {
-    const Mesh square = make_square(10.0, 20);
-    Mesh m = with_hole(square, [](const Eigen::Vector3d& c) { return (c - Eigen::Vector3d(5, 5, 0)).norm() < 3.0; });
+    Mesh m = grid_with_round_hole();
     const Eigen::Index first = m.triangles.rows();
     const long before = m.points.rows();
-    ASSERT_EQ(fill_holes(m,
-                         [&](const std::vector<int32_t>& loop) { // not the square's own border
-                             return std::none_of(loop.begin(), loop.end(), [&](int32_t v) {
-                                 return m.points(v, 0) == 0.0 || m.points(v, 0) == 10.0;
-                             });
-                         }),
-              1);
+    ASSERT_EQ(fill_inner_holes(m), 1);
     EXPECT_EQ(refine_patches(m, first, 0.5, 20), 20);
     EXPECT_EQ(m.points.rows(), before + 20);
     EXPECT_TRUE(topology(m).oriented_manifold());
