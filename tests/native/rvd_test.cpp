@@ -66,10 +66,7 @@ TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
     const LiftedSurface s = lifted(m, 0.05, 0.0);
     LiftedPoints v = test::sites_near(s, 500, 0.002, 21);
     auto areas_with = [&](const LiftedPoints& sites, RvdCache* cache) {
-        Eigen::VectorXd a = Eigen::VectorXd::Zero(sites.rows());
-        std::vector<Eigen::VectorXd> per_thread(2, a);
-        compute_rvd(s, sites, 2, [&](int t, const RvdPolygon& p) { per_thread[t][p.site] += polygon_area(p); }, cache);
-        return Eigen::VectorXd(per_thread[0] + per_thread[1]);
+        return restricted_cell_areas(s, sites, 2, cache);
     };
     RvdCache cache;
     areas_with(v, &cache);
@@ -127,9 +124,7 @@ TEST(CellAreas, EveryTriangleIsCoveredWhateverTheTeamAndTheSplit) {
     const Eigen::VectorXd reference = restricted_cell_areas(s, v, 1);
     RvdCache cache;
     for (int call = 0; call < 3; ++call) { // the first call splits by count, the next ones by work
-        std::vector<Eigen::VectorXd> per_thread(3, Eigen::VectorXd::Zero(v.rows()));
-        compute_rvd(s, v, 3, [&](int t, const RvdPolygon& p) { per_thread[t][p.site] += polygon_area(p); }, &cache);
-        const Eigen::VectorXd areas = per_thread[0] + per_thread[1] + per_thread[2];
+        const Eigen::VectorXd areas = restricted_cell_areas(s, v, 3, &cache);
         EXPECT_LT((areas - reference).cwiseAbs().maxCoeff(), 1e-12 * expected) << "call " << call;
     }
     EXPECT_EQ(static_cast<long>(cache.work.size()), static_cast<long>(s.triangles.rows()));

@@ -421,12 +421,13 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
         compute_rvd_fixed<6>(surface, sites, n, visit, c);
 }
 
-Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads) {
+Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
+                                      RvdCache* cache) {
     const int n = resolve_threads(threads);
     std::vector<Eigen::VectorXd> per_thread(n, Eigen::VectorXd::Zero(sites.rows()));
-    compute_rvd(surface, sites, n, [&](int thread, const RvdPolygon& poly) {
-        per_thread[thread][poly.site] += polygon_area(poly);
-    });
+    compute_rvd(
+        surface, sites, n,
+        [&](int thread, const RvdPolygon& poly) { per_thread[thread][poly.site] += polygon_area(poly); }, cache);
     Eigen::VectorXd total = Eigen::VectorXd::Zero(sites.rows());
     for (const auto& a : per_thread) total += a;
     return total;

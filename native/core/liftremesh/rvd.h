@@ -117,6 +117,8 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
 double polygon_area(const RvdPolygon& polygon);
 
 //! #S areas |Omega_{k|S}| of the restricted cells; they add up to lifted_area(surface).
-Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0);
+//! `cache` as in compute_rvd.
+Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0,
+                                      RvdCache* cache = nullptr);
 
 } // namespace liftremesh
