@@ -288,30 +288,27 @@ class TaskPanelTest(GuiTestCase):
 
 
 class FailureTest(GuiTestCase):
-    def test_a_non_shape_in_the_selection_is_refused(self):
-        block = add_box_with_hole(self.doc)
-        group = self.doc.addObject("App::DocumentObjectGroup", "Folder")
+    def assert_remesh_refused(self, culprit, *selection):
+        """Running Remesh on `selection` shows one error naming `culprit` and adds nothing."""
         before = self.names()
-        self.select(block, group)
+        self.select(*selection)
         self.assertTrue(FreeCADGui.isCommandActive(REMESH))
         FreeCADGui.runCommand(REMESH)
         errors = self.boxes.texts("critical")
         self.assertEqual(len(errors), 1, self.boxes.shown)
-        self.assertIn("Folder", errors[0])
+        self.assertIn(culprit, errors[0])
         self.assertEqual(self.names(), before)
+
+    def test_a_non_shape_in_the_selection_is_refused(self):
+        block = add_box_with_hole(self.doc)
+        group = self.doc.addObject("App::DocumentObjectGroup", "Folder")
+        self.assert_remesh_refused("Folder", block, group)
 
     def test_an_empty_shape_is_refused(self):
         empty = self.doc.addObject("Part::Feature", "Wire")
         empty.Shape = Part.makeLine(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(10, 0, 0))
         self.doc.recompute()
-        before = self.names()
-        self.select(empty)
-        self.assertTrue(FreeCADGui.isCommandActive(REMESH))
-        FreeCADGui.runCommand(REMESH)
-        errors = self.boxes.texts("critical")
-        self.assertEqual(len(errors), 1, self.boxes.shown)
-        self.assertIn("Wire", errors[0])
-        self.assertEqual(self.names(), before)
+        self.assert_remesh_refused("Wire", empty)
 
     def test_a_shape_emptied_before_ok_fails_and_the_panel_stays_open(self):
         block = add_box_with_hole(self.doc)
