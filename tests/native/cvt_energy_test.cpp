@@ -21,8 +21,11 @@ TEST_P(Gradient, MatchesCentralFiniteDifferences) {
         const LiftedSurface s = make_lifted_surface(lift(m.points, normals, nu), m.triangles,
                                                     density_weights(triangle_density(m, normals, 0.05), delta));
         const LiftedPoints v = test::sites_near(s, 80, 0.02, 11); // generic: off the surface, in general position
-        LiftedPoints grad;
-        cvt_objective(s, v, sigma, 1, grad);
+        LiftedPoints grad, grad2;
+        const double f = cvt_objective(s, v, sigma, 1, grad);
+        // Summed chunk by chunk in a fixed order: the same bits on two threads.
+        EXPECT_EQ(cvt_objective(s, v, sigma, 2, grad2), f);
+        EXPECT_EQ(grad2, grad);
 
         std::mt19937_64 rng(5);
         std::uniform_int_distribution<long> pick_site(0, v.rows() - 1);

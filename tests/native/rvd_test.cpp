@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 #include <vector>
 
@@ -105,27 +106,38 @@ TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
     }
 }
 
-// The triangles are split into one run per requested thread; a smaller team (here a nested
-// region, which the runtime gives one thread) must still cover every run. With a cache the
-// runs follow the work measured on the last diagram: the diagram stays the same.
-TEST(CellAreas, EveryTriangleIsCoveredWhateverTheTeamAndTheSplit) {
+// Threads take chunks of triangles as they come, and the areas are added chunk by chunk, each
+// site's by its rank in the chunk: the same areas, to the bit, on any number of threads, in a
+// smaller team than asked for (a nested region, which the runtime gives one thread), and with
+// chunks split by the work measured on the last diagram.
+TEST(CellAreas, AreTheSameToTheBitWhateverTheThreadCount) {
     const Mesh m = test::make_torus(0.6, 0.25, 30, 14);
     const LiftedSurface s = lifted(m, 0.05, 0.0);
     const LiftedPoints v = test::sites_near(s, 300, 0.01, 5);
-    const double expected = lifted_area(s);
+    ASSERT_GT(rvd_chunks(s), 1);
+
+    // Ranks: 0, 1, 2, ... in each chunk, one per site of the chunk.
+    std::vector<std::map<int32_t, int32_t>> rank(rvd_chunks(s));
+    Eigen::VectorXd by_site = Eigen::VectorXd::Zero(v.rows());
+    compute_rvd(s, v, 1, [&](int chunk, const RvdPolygon& poly) {
+        auto& ranks = rank[chunk];
+        const auto [it, added] = ranks.emplace(poly.site, static_cast<int32_t>(ranks.size()));
+        EXPECT_EQ(poly.chunk_rank, it->second) << "chunk " << chunk << " site " << poly.site;
+        by_site[poly.site] += polygon_area(poly);
+    });
+    const Eigen::VectorXd reference = restricted_cell_areas(s, v, 1);
+    EXPECT_LT((reference - by_site).cwiseAbs().maxCoeff(), 1e-14 * reference.sum());
+
+    for (int threads : {2, 3}) EXPECT_EQ(restricted_cell_areas(s, v, threads), reference) << threads << " threads";
     Eigen::VectorXd nested;
 #pragma omp parallel num_threads(2)
     {
 #pragma omp single
         nested = restricted_cell_areas(s, v, 3);
     }
-    EXPECT_NEAR(nested.sum(), expected, 1e-9 * expected);
-
-    const Eigen::VectorXd reference = restricted_cell_areas(s, v, 1);
-    RvdCache cache;
-    for (int call = 0; call < 3; ++call) { // the first call splits by count, the next ones by work
-        const Eigen::VectorXd areas = restricted_cell_areas(s, v, 3, &cache);
-        EXPECT_LT((areas - reference).cwiseAbs().maxCoeff(), 1e-12 * expected) << "call " << call;
-    }
-    EXPECT_EQ(static_cast<long>(cache.work.size()), static_cast<long>(s.triangles.rows()));
+    EXPECT_EQ(nested, reference);
+    RvdCache one, three;
+    for (int call = 0; call < 3; ++call) // the first call splits by count, the next ones by work
+        EXPECT_EQ(restricted_cell_areas(s, v, 3, &three), restricted_cell_areas(s, v, 1, &one)) << "call " << call;
+    EXPECT_EQ(static_cast<long>(one.work.size()), static_cast<long>(s.triangles.rows()));
 }

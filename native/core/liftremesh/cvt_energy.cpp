@@ -17,22 +17,37 @@ struct ObjectiveAccumulator {
     const LiftedSurface& surface;
     const LiftedPoints& sites;
     double sigma;
+    // Per chunk of the diagram, its part of the objective and each of its sites' part of the
+    // gradient (RvdPolygon::chunk_rank), summed in visiting order; added up chunk after chunk,
+    // they give the same sums, to the bit, whatever the thread count.
+    struct Term {
+        Vec grad;
+        int32_t site;
+    };
     struct Sums {
         double value = 0.0;
-        LiftedPoints grad; // #S by D
+        std::vector<Term> terms;
     };
-    std::vector<ThreadSlot<Sums>> sums; // per thread
+    std::vector<ChunkSlot<Sums>> sums;
 
-    ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig, int threads)
-        : surface(s), sites(v), sigma(sig), sums(threads) {
-        for (auto& slot : sums) slot.value.grad = LiftedPoints::Zero(v.rows(), D);
+    ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig)
+        : surface(s), sites(v), sigma(sig), sums(rvd_chunks(s)) {}
+
+    double total(LiftedPoints& gradient) const {
+        double value = 0.0;
+        gradient = LiftedPoints::Zero(sites.rows(), D);
+        for (const auto& chunk : sums) {
+            value += chunk.value.value;
+            for (const Term& t : chunk.value.terms) gradient.row(t.site) += t.grad.transpose();
+        }
+        return value;
     }
 
     // Every polygon lies in the plane of its triangle p and arrives in p's orthonormal frame
     // (x = x0 + a u1 + b u2), so the integrals are 2D ones: with w_k = v_k - x0 split into its
     // in-plane part s_k and its part normal to the plane (length^2 o_k), |x - v_k|^2 =
     // |(a, b) - s_k|^2 + o_k, and Pi_p (x - v_k) = -(normal part of w_k) for every x (Eq. 13).
-    void operator()(int thread, const RvdPolygon& poly) {
+    void operator()(int chunk, const RvdPolygon& poly) {
         const long k = poly.site, p = poly.triangle;
         const double w = surface.weights[p]; // rho_p^delta, Eq. 25
         const Map x0(surface.points.row(surface.triangles(p, 0)).data());
@@ -82,24 +97,19 @@ struct ObjectiveAccumulator {
             }
             g += coef_mid.x() * u1 + coef_mid.y() * u2 - coef_sum * wk;
         }
-        Sums& mine = sums[thread].value;
+        Sums& mine = sums[chunk].value;
         mine.value += w * f;
-        mine.grad.row(k) += w * g.transpose();
+        if (poly.chunk_rank == static_cast<int32_t>(mine.terms.size())) mine.terms.push_back({Vec::Zero(), poly.site});
+        mine.terms[poly.chunk_rank].grad += w * g;
     }
 };
 
 template <int D>
 double objective_fixed(const LiftedSurface& surface, const LiftedPoints& sites, double sigma, int threads,
                        LiftedPoints& gradient, RvdCache* cache) {
-    ObjectiveAccumulator<D> acc(surface, sites, sigma, threads);
-    compute_rvd(surface, sites, threads, [&acc](int thread, const RvdPolygon& poly) { acc(thread, poly); }, cache);
-    double total = 0.0;
-    gradient = LiftedPoints::Zero(sites.rows(), D);
-    for (int t = 0; t < threads; ++t) {
-        total += acc.sums[t].value.value;
-        gradient += acc.sums[t].value.grad;
-    }
-    return total;
+    ObjectiveAccumulator<D> acc(surface, sites, sigma);
+    compute_rvd(surface, sites, threads, [&acc](int chunk, const RvdPolygon& poly) { acc(chunk, poly); }, cache);
+    return acc.total(gradient);
 }
 
 } // namespace

@@ -10,7 +10,7 @@ namespace liftremesh {
 //! Estimated peak memory of remesh() in bytes, for `sites` sites on an input of `triangles`
 //! triangles with `threads` threads. Measured on this project's machine (peak resident size,
 //! /usr/bin/time -v): about 1.1 kB a site (sites, L-BFGS history of 7 pairs, neighbour lists,
-//! output), 0.1 kB a site for each thread (gradient and scratch), under 1 kB an input triangle,
+//! output, per-chunk gradient sums), 0.1 kB a site for each thread (scratch), under 1 kB an input triangle,
 //! and some 64 MiB of fixed costs (quality samples). Rounded up: an estimate, not a bound.
 std::uint64_t estimated_peak_bytes(long sites, long triangles, int threads);
 

@@ -49,7 +49,8 @@ struct RemeshParams {
     //! Number of L-BFGS iterations in all. The first 90% use sigma = 1, the rest (at least 10)
     //! use sigma (Section 6.2.2). Range >= 1. Default 100.
     int iterations = 100;
-    //! Seed of the random initial sampling: a given seed gives the same result. Default 1.
+    //! Seed of the random initial sampling: a given seed gives the same result, to the bit, on
+    //! any number of threads. Default 1.
     std::uint64_t seed = 1;
     //! Worker threads for the restricted Voronoi diagram and the objective; 0 = all cores.
     int threads = 0;

@@ -6,9 +6,8 @@
 namespace liftremesh {
 
 Triangles restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads) {
-    const int n = resolve_threads(threads);
-    std::vector<ThreadSlot<std::vector<std::array<int32_t, 3>>>> found(n);
-    compute_rvd(surface, sites, n, [&](int thread, const RvdPolygon& poly) {
+    std::vector<ChunkSlot<std::vector<std::array<int32_t, 3>>>> found(rvd_chunks(surface));
+    compute_rvd(surface, sites, threads, [&](int chunk, const RvdPolygon& poly) {
         for (int i = 0; i < poly.size; ++i) {
             // Vertex i joins the edge before it (from i-1) and the edge after it (from i).
             const int32_t l = poly.edges[(i + poly.size - 1) % poly.size], m = poly.edges[i];
@@ -16,7 +15,7 @@ Triangles restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& 
             std::array<int32_t, 3> t = {poly.site, l, m};
             // Rotate so the smallest index comes first: the three cells report the same triangle.
             std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-            found[thread].value.push_back(t);
+            found[chunk].value.push_back(t);
         }
     });
     std::vector<std::array<int32_t, 3>> all;

@@ -64,6 +64,12 @@ double polygon_area(const RvdPolygon& poly) {
 
 int resolve_threads(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
+int rvd_chunks(const LiftedSurface& surface) {
+    // About 32 triangles a chunk: small enough to even out the threads' ends, large enough to
+    // keep each chunk's sites in its thread's cache.
+    return static_cast<int>(std::clamp<long>(static_cast<long>(surface.triangles.rows()) / 32, 1, 256));
+}
+
 namespace {
 
 // A convex polygon in the plane of one triangle, in the triangle's 2D orthonormal coordinates
@@ -211,27 +217,28 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     const int32_t* nn = cache.neighbours.data();
     const double* nn_d2 = cache.distances2.data();
     if (static_cast<long>(cache.seeds.size()) != nf) cache.seeds.assign(nf, -1);
-    // Each thread takes a contiguous run of the Morton order (its own part of the surface, so
-    // its own sites in its cache) with as much work as the others had last time; a fixed split
-    // of the triangles left one thread idle a fifth of the time on t13, whose few large
-    // triangles hold many polygons each.
+    // Chunks: contiguous runs of the Morton order (their own part of the surface, so their own
+    // sites in a thread's cache) with as much work as the others had last time, taken by the
+    // threads as they come. One fixed run per thread left a thread idle at the end of the
+    // diagrams, 0.07-0.19 s a run on t13 and 1 s on the bunny, as the host slows the threads
+    // down unevenly; chunks leave 0.02 s and 0.04 s.
     if (static_cast<long>(cache.work.size()) != nf) cache.work.assign(nf, 1);
-    std::vector<long> bounds(static_cast<size_t>(threads) + 1, nf);
+    const int chunks = rvd_chunks(surface);
+    std::vector<long> bounds(static_cast<size_t>(chunks) + 1, nf);
     bounds[0] = 0;
     {
         double total = 0.0;
         for (int32_t w : cache.work) total += w;
         double done = 0.0;
-        int t = 1;
-        for (long i = 0; i < nf && t < threads; ++i) {
+        int c = 1;
+        for (long i = 0; i < nf && c < chunks; ++i) {
             done += cache.work[i];
-            while (t < threads && done >= total * t / threads) bounds[t++] = i + 1;
+            while (c < chunks && done >= total * c / chunks) bounds[c++] = i + 1;
         }
     }
 
 #pragma omp parallel num_threads(threads)
     {
-        const int thread = omp_get_thread_num();
         auto buffers = std::make_unique<Polygon2[]>(2); // swapped by pointer after each clip
         Polygon2* poly = &buffers[0];
         Polygon2* scratch = &buffers[1];
@@ -246,160 +253,167 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
             PlanarSite planar;
         }; // one cache line holds two
         std::vector<SiteScratch> scratch_of(ns);
-        // The runtime may give fewer threads than asked for: the team then shares the runs.
-        const int team = omp_get_num_threads();
-        for (int run = thread; run < threads; run += team)
-        for (long i = bounds[run]; i < bounds[run + 1]; ++i) {
-            const long p = surface.order[i];
-            if (!surface.valid[p]) continue;
-            int32_t work = 1; // polygons and bisector tests on this triangle
-            const Vec x0 = Map(surface.points.row(surface.triangles(p, 0)).data());
-            const Vec x1 = Map(surface.points.row(surface.triangles(p, 1)).data());
-            const Vec x2 = Map(surface.points.row(surface.triangles(p, 2)).data());
-            const Vec u1 = Map(surface.u1.row(p).data()), u2 = Map(surface.u2.row(p).data());
-            const Eigen::Vector2d c0(0.0, 0.0), c1((x1 - x0).dot(u1), 0.0), c2((x2 - x0).dot(u1), (x2 - x0).dot(u2));
-            auto planar = [&](long s) -> const PlanarSite& {
-                SiteScratch& sc = scratch_of[s];
-                if (sc.planar_stamp != p) {
-                    const Vec w = Map(sites.row(s).data()) - x0;
-                    sc.planar = PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
-                    sc.planar_stamp = static_cast<int32_t>(p);
-                }
-                return sc.planar;
-            };
-            auto enqueue = [&](int32_t s) {
-                if (scratch_of[s].visited_stamp == p) return false;
-                scratch_of[s].visited_stamp = static_cast<int32_t>(p);
-                queue.push_back(s);
-                return true;
-            };
-            // Seed: any site whose cell meets the triangle; propagation finds the others. The
-            // one that met it last time usually still does; otherwise the site nearest to the
-            // centroid in R^d, which owns it: it lies within the lifted distance rho of any
-            // site, so within the 3D distance rho now, and rho + st.rest at the anchor unless
-            // it is a mover.
-            const Vec centroid = (x0 + x1 + x2) / 3.0;
-            auto exact_seed = [&]() {
-                int32_t first = tree.nearest(centroid.data());
-                double best = lifted_d2(first, centroid.data());
-                candidates.assign(st.movers.begin(), st.movers.end());
-                tree.within(centroid.data(), std::sqrt(best) + st.rest, candidates);
-                for (int32_t c : candidates)
-                    if (const double d2 = lifted_d2(c, centroid.data()); d2 < best || (d2 == best && c < first)) {
-                        best = d2;
-                        first = c;
+        // Per site, the chunk that last visited it and its rank there (RvdPolygon::chunk_rank).
+        std::vector<std::pair<int32_t, int32_t>> rank_of(ns, {-1, -1});
+#pragma omp for schedule(dynamic, 1)
+        for (int chunk = 0; chunk < chunks; ++chunk) {
+            int32_t ranks = 0; // sites of this chunk so far
+            for (long i = bounds[chunk]; i < bounds[chunk + 1]; ++i) {
+                const long p = surface.order[i];
+                if (!surface.valid[p]) continue;
+                int32_t work = 1; // polygons and bisector tests on this triangle
+                const Vec x0 = Map(surface.points.row(surface.triangles(p, 0)).data());
+                const Vec x1 = Map(surface.points.row(surface.triangles(p, 1)).data());
+                const Vec x2 = Map(surface.points.row(surface.triangles(p, 2)).data());
+                const Vec u1 = Map(surface.u1.row(p).data()), u2 = Map(surface.u2.row(p).data());
+                const Eigen::Vector2d c0(0.0, 0.0), c1((x1 - x0).dot(u1), 0.0), c2((x2 - x0).dot(u1), (x2 - x0).dot(u2));
+                auto planar = [&](long s) -> const PlanarSite& {
+                    SiteScratch& sc = scratch_of[s];
+                    if (sc.planar_stamp != p) {
+                        const Vec w = Map(sites.row(s).data()) - x0;
+                        sc.planar = PlanarSite{Eigen::Vector2d(w.dot(u1), w.dot(u2)), w.squaredNorm()};
+                        sc.planar_stamp = static_cast<int32_t>(p);
                     }
-                return first;
-            };
-            const int32_t remembered = cache.seeds[p];
-            bool seed_is_exact = remembered < 0 || remembered >= ns;
-            const int32_t first = seed_is_exact ? exact_seed() : remembered;
-            bool any_polygon = false;
-            queue.clear();
-            enqueue(first);
-            while (!queue.empty() || (!any_polygon && !seed_is_exact)) {
-                if (queue.empty()) { // the remembered seed no longer meets the triangle
-                    seed_is_exact = true;
-                    if (!enqueue(exact_seed())) break;
-                }
-                const int32_t k = queue.back();
-                queue.pop_back();
-                const PlanarSite vk = planar(k);
-                const double off_plane2 = vk.off_plane2();
-                poly->n = 0;
-                poly->push(c0, -1);
-                poly->push(c1, -2);
-                poly->push(c2, -3);
-                // Candidates in order of distance from a query point q: the anchor of k, or k
-                // itself if it is a mover (its list is made now). A site l other than a mover
-                // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack,
-                // and no site at more than 2 sqrt(r2) from k can cut the polygon: none at
-                // |q - anchor_l|^2 > stop_d2 can.
-                const bool k_moves = st.is_mover[k];
-                const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
-                const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
-                double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
-                auto security_d2 = [&] { const double reach = 2.0 * std::sqrt(r2) + slack; return reach * reach; };
-                double stop_d2 = security_d2();
-                const Eigen::Vector3d pk = positions.row(k).transpose();
-                // Applies the bisector of k and l if l is near enough to cut the polygon.
-                enum Outcome { kGoOn, kEmpty, kFull };
-                auto cut_by = [&](int32_t l) {
-                    ++work;
-                    const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
-                    if (d2 > 4.0 * r2) return kGoOn; // too far to cut this polygon
-                    if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) { // coincident sites: the lower index owns the cell
-                        if (l > k) return kGoOn;
-                        enqueue(l); // l owns this cell: propagate through it instead
-                        return kEmpty;
-                    }
-                    if (poly->full()) return kFull; // cannot happen for a Voronoi cell of a sane sampling
-                    if (!clip_by_bisector(*poly, vk, planar(l), l, *scratch)) return kGoOn;
-                    std::swap(poly, scratch);
-                    if (poly->n < 3) return kEmpty;
-                    r2 = max_squared_distance(*poly, vk.ab, off_plane2);
-                    stop_d2 = security_d2();
-                    return kGoOn;
+                    return sc.planar;
                 };
-                const int32_t* list = &nn[k * k_cached];
-                const double* list_d2 = &nn_d2[k * k_cached];
-                int count = k_cached;
-                if (k_moves) {
-                    more.resize(k_cached);
-                    more_d2.resize(k_cached);
-                    count = tree.knn(query, k_cached, more.data(), more_d2.data());
-                    list = more.data();
-                    list_d2 = more_d2.data();
-                }
-                Outcome outcome = kGoOn;
-                for (int j = 0;; ++j) {
-                    if (j == count) { // ran out of listed neighbours before the security radius
-                        if (count >= ns) break;
-                        const int wanted = static_cast<int>(std::min<long>(ns, 2L * count));
-                        more.resize(wanted);
-                        more_d2.resize(wanted);
-                        count = tree.knn(query, wanted, more.data(), more_d2.data());
+                auto enqueue = [&](int32_t s) {
+                    if (scratch_of[s].visited_stamp == p) return false;
+                    scratch_of[s].visited_stamp = static_cast<int32_t>(p);
+                    queue.push_back(s);
+                    return true;
+                };
+                // Seed: any site whose cell meets the triangle; propagation finds the others. The
+                // one that met it last time usually still does; otherwise the site nearest to the
+                // centroid in R^d, which owns it: it lies within the lifted distance rho of any
+                // site, so within the 3D distance rho now, and rho + st.rest at the anchor unless
+                // it is a mover.
+                const Vec centroid = (x0 + x1 + x2) / 3.0;
+                auto exact_seed = [&]() {
+                    int32_t first = tree.nearest(centroid.data());
+                    double best = lifted_d2(first, centroid.data());
+                    candidates.assign(st.movers.begin(), st.movers.end());
+                    tree.within(centroid.data(), std::sqrt(best) + st.rest, candidates);
+                    for (int32_t c : candidates)
+                        if (const double d2 = lifted_d2(c, centroid.data()); d2 < best || (d2 == best && c < first)) {
+                            best = d2;
+                            first = c;
+                        }
+                    return first;
+                };
+                const int32_t remembered = cache.seeds[p];
+                bool seed_is_exact = remembered < 0 || remembered >= ns;
+                const int32_t first = seed_is_exact ? exact_seed() : remembered;
+                bool any_polygon = false;
+                queue.clear();
+                enqueue(first);
+                while (!queue.empty() || (!any_polygon && !seed_is_exact)) {
+                    if (queue.empty()) { // the remembered seed no longer meets the triangle
+                        seed_is_exact = true;
+                        if (!enqueue(exact_seed())) break;
+                    }
+                    const int32_t k = queue.back();
+                    queue.pop_back();
+                    const PlanarSite vk = planar(k);
+                    const double off_plane2 = vk.off_plane2();
+                    poly->n = 0;
+                    poly->push(c0, -1);
+                    poly->push(c1, -2);
+                    poly->push(c2, -3);
+                    // Candidates in order of distance from a query point q: the anchor of k, or k
+                    // itself if it is a mover (its list is made now). A site l other than a mover
+                    // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack,
+                    // and no site at more than 2 sqrt(r2) from k can cut the polygon: none at
+                    // |q - anchor_l|^2 > stop_d2 can.
+                    const bool k_moves = st.is_mover[k];
+                    const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
+                    const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
+                    double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                    auto security_d2 = [&] { const double reach = 2.0 * std::sqrt(r2) + slack; return reach * reach; };
+                    double stop_d2 = security_d2();
+                    const Eigen::Vector3d pk = positions.row(k).transpose();
+                    // Applies the bisector of k and l if l is near enough to cut the polygon.
+                    enum Outcome { kGoOn, kEmpty, kFull };
+                    auto cut_by = [&](int32_t l) {
+                        ++work;
+                        const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
+                        if (d2 > 4.0 * r2) return kGoOn; // too far to cut this polygon
+                        // Coincident sites: the lower index owns the cell.
+                        if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) {
+                            if (l > k) return kGoOn;
+                            enqueue(l); // l owns this cell: propagate through it instead
+                            return kEmpty;
+                        }
+                        if (poly->full()) return kFull; // cannot happen for a Voronoi cell of a sane sampling
+                        if (!clip_by_bisector(*poly, vk, planar(l), l, *scratch)) return kGoOn;
+                        std::swap(poly, scratch);
+                        if (poly->n < 3) return kEmpty;
+                        r2 = max_squared_distance(*poly, vk.ab, off_plane2);
+                        stop_d2 = security_d2();
+                        return kGoOn;
+                    };
+                    const int32_t* list = &nn[k * k_cached];
+                    const double* list_d2 = &nn_d2[k * k_cached];
+                    int count = k_cached;
+                    if (k_moves) {
+                        more.resize(k_cached);
+                        more_d2.resize(k_cached);
+                        count = tree.knn(query, k_cached, more.data(), more_d2.data());
                         list = more.data();
                         list_d2 = more_d2.data();
-                        // Ties may order the first entries differently: scan from the start.
-                        // Bisectors already applied cut nothing the second time.
-                        j = 0;
                     }
-                    const int32_t l = list[j];
-                    if (l == k || st.is_mover[l]) continue; // movers come below
-                    if (list_d2[j] > stop_d2) break; // security radius reached: so are all later and unlisted sites
-                    if ((outcome = cut_by(l)) != kGoOn) break;
+                    Outcome outcome = kGoOn;
+                    for (int j = 0;; ++j) {
+                        if (j == count) { // ran out of listed neighbours before the security radius
+                            if (count >= ns) break;
+                            const int wanted = static_cast<int>(std::min<long>(ns, 2L * count));
+                            more.resize(wanted);
+                            more_d2.resize(wanted);
+                            count = tree.knn(query, wanted, more.data(), more_d2.data());
+                            list = more.data();
+                            list_d2 = more_d2.data();
+                            // Ties may order the first entries differently: scan from the start.
+                            // Bisectors already applied cut nothing the second time.
+                            j = 0;
+                        }
+                        const int32_t l = list[j];
+                        if (l == k || st.is_mover[l]) continue; // movers come below
+                        if (list_d2[j] > stop_d2) break; // security radius reached: so are all later and unlisted sites
+                        if ((outcome = cut_by(l)) != kGoOn) break;
+                    }
+                    // The movers, wherever they are: those near k's anchor if that is far enough,
+                    // else all. The polygon only shrinks, so those left out by the radius at this
+                    // point could cut nothing either.
+                    if (!st.movers.empty() && outcome == kGoOn) {
+                        // The search is strict.
+                        const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] < st.reach;
+                        const int32_t* m = near_enough ? st.near_movers.begin(k) : st.movers.data();
+                        const int32_t* end = near_enough ? st.near_movers.end(k) : st.movers.data() + st.movers.size();
+                        for (; outcome == kGoOn && m != end; ++m)
+                            if (*m != k) outcome = cut_by(*m);
+                    }
+                    const bool empty = outcome == kEmpty;
+                    if (empty) continue;
+                    if (!any_polygon && cache.seeds[p] != k) cache.seeds[p] = k; // no write (cache line) if unchanged
+                    any_polygon = true;
+                    RvdPolygon out;
+                    out.site = k;
+                    out.triangle = static_cast<int32_t>(p);
+                    out.size = poly->n;
+                    out.planar = poly->v[0].data(); // Vector2d has no padding: size x 2 doubles
+                    out.edges = poly->e;
+                    out.site_planar = vk;
+                    for (int i = 0; i < poly->n; ++i)
+                        if (poly->e[i] >= 0) edge_sites[i] = planar(poly->e[i]);
+                    out.edge_sites = edge_sites.data();
+                    if (rank_of[k].first != chunk) rank_of[k] = {chunk, ranks++};
+                    out.chunk_rank = rank_of[k].second;
+                    visit(chunk, out);
+                    work += poly->n;
+                    for (int i = 0; i < poly->n; ++i)
+                        if (poly->e[i] >= 0) enqueue(poly->e[i]);
                 }
-                // The movers, wherever they are: those near k's anchor if that is far enough,
-                // else all. The polygon only shrinks, so those left out by the radius at this
-                // point could cut nothing either.
-                if (!st.movers.empty() && outcome == kGoOn) {
-                    const bool near_enough = !k_moves && 2.0 * std::sqrt(r2) + st.displacement[k] < st.reach; // the search is strict
-                    const int32_t* m = near_enough ? st.near_movers.begin(k) : st.movers.data();
-                    const int32_t* end = near_enough ? st.near_movers.end(k) : st.movers.data() + st.movers.size();
-                    for (; outcome == kGoOn && m != end; ++m)
-                        if (*m != k) outcome = cut_by(*m);
-                }
-                const bool empty = outcome == kEmpty;
-                if (empty) continue;
-                if (!any_polygon && cache.seeds[p] != k) cache.seeds[p] = k; // no write (cache line) if unchanged
-                any_polygon = true;
-                RvdPolygon out;
-                out.site = k;
-                out.triangle = static_cast<int32_t>(p);
-                out.size = poly->n;
-                out.planar = poly->v[0].data(); // Vector2d has no padding: size x 2 doubles
-                out.edges = poly->e;
-                out.site_planar = vk;
-                for (int i = 0; i < poly->n; ++i)
-                    if (poly->e[i] >= 0) edge_sites[i] = planar(poly->e[i]);
-                out.edge_sites = edge_sites.data();
-                visit(thread, out);
-                work += poly->n;
-                for (int i = 0; i < poly->n; ++i)
-                    if (poly->e[i] >= 0) enqueue(poly->e[i]);
+                cache.work[i] = work;
             }
-            cache.work[i] = work;
         }
     }
 }
@@ -423,13 +437,20 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
 
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
                                       RvdCache* cache) {
-    const int n = resolve_threads(threads);
-    std::vector<Eigen::VectorXd> per_thread(n, Eigen::VectorXd::Zero(sites.rows()));
+    // Per chunk, each site's area in visiting order; then the chunks one after the other: the
+    // same sums whatever the thread count.
+    std::vector<ChunkSlot<std::vector<std::pair<int32_t, double>>>> areas(rvd_chunks(surface));
     compute_rvd(
-        surface, sites, n,
-        [&](int thread, const RvdPolygon& poly) { per_thread[thread][poly.site] += polygon_area(poly); }, cache);
+        surface, sites, threads,
+        [&](int chunk, const RvdPolygon& poly) {
+            auto& mine = areas[chunk].value;
+            if (poly.chunk_rank == static_cast<int32_t>(mine.size())) mine.emplace_back(poly.site, 0.0);
+            mine[poly.chunk_rank].second += polygon_area(poly);
+        },
+        cache);
     Eigen::VectorXd total = Eigen::VectorXd::Zero(sites.rows());
-    for (const auto& a : per_thread) total += a;
+    for (const auto& chunk : areas)
+        for (const auto& [site, area] : chunk.value) total[site] += area;
     return total;
 }
 

@@ -8,8 +8,8 @@
 // radius: no farther site can cut it). Each triangle is processed on its own, starting from the
 // site nearest to its centroid and propagating to the sites across the bisector edges found;
 // the cells' dual graph within a convex triangle is connected, so none is missed, and no input
-// connectivity is used, so gaps and T-junctions need no special case. Triangles are spread
-// over threads with OpenMP.
+// connectivity is used, so gaps and T-junctions need no special case. Runs of triangles are
+// spread over threads with OpenMP.
 #pragma once
 
 #include "liftremesh/mesh.h"
@@ -63,18 +63,25 @@ struct RvdPolygon {
     const int32_t* edges = nullptr;
     PlanarSite site_planar;              //!< site k in the triangle's frame
     const PlanarSite* edge_sites = nullptr; //!< per edge, site l in the frame (bisector edges only)
+    //! Site k's rank among the sites of this polygon's chunk, in the order the chunk first visits
+    //! them (0, 1, 2, ...): a new site comes with the chunk's next rank. Lets a visitor keep one
+    //! sum per site and chunk in a short array instead of one per polygon or a #S array per chunk.
+    int32_t chunk_rank = -1;
 };
 
-//! Called for every non-empty polygon; `thread` in [0, resolve_threads(threads)).
-using PolygonVisitor = std::function<void(int thread, const RvdPolygon& polygon)>;
-
-//! A visitor's per-thread accumulator, on a cache line of its own: threads write their slots on
-//! every polygon, and slots sharing a line would make them invalidate each other's caches.
+//! Called for every non-empty polygon with the chunk it belongs to, in [0, rvd_chunks(surface)).
+using PolygonVisitor = std::function<void(int chunk, const RvdPolygon& polygon)>;
+//! A visitor's per-chunk accumulator, on a cache line of its own: threads write the slots of
+//! their chunks on every polygon, and slots sharing a line would make them invalidate each
+//! other's caches.
 template <class T>
-struct alignas(64) ThreadSlot {
+struct alignas(64) ChunkSlot {
     T value{};
 };
-
+//! The number of chunks the diagram's triangles are split into: runs of the processing order
+//! that threads take one at a time. Depends on the triangle count only (at most 256), not on
+//! the thread count.
+int rvd_chunks(const LiftedSurface& surface);
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
@@ -99,17 +106,19 @@ struct RvdCache {
     double rebuild_distance = 0.0;   //!< sites farther than this from `anchor` are movers
     std::vector<int32_t> seeds;      //!< #F a site whose cell met the triangle last time, or -1
     //! #F, in processing order (surface.order): the work each triangle took last time (polygons
-    //! and bisector tests), which splits the next diagram's triangles evenly between threads.
+    //! and bisector tests), which splits the next diagram's triangles into chunks of even work.
     std::vector<int32_t> work;
     long rebuilds = 0;               //!< how many times the lists were made (for benchmarks)
 };
 
 //! Computes the diagram of `sites` (#S by d, d = surface.dimension()) and visits its polygons.
-//! Visits happen concurrently from several threads: each thread takes a contiguous run of the
-//! triangles in processing order (even work, as measured by the cache's last diagram, or even
-//! counts), and visits each triangle's polygons in a fixed order, so that the same calls with
-//! the same thread count visit the same way. The visitor must write only per-thread state.
-//! `cache` (may be null) carries neighbour lists from one call to the next, see RvdCache.
+//! The triangles are split into rvd_chunks(surface) contiguous runs of the processing order,
+//! with even work as measured by the cache's last diagram (or even counts); threads take the
+//! next chunk as they finish one, so that a thread slowed down by the host does not hold the
+//! others up. Each chunk is visited by one thread, its polygons always in the same order;
+//! chunks are visited concurrently, in any order. A visitor that keeps per-chunk state and
+//! combines the chunks in their order gets the same result, to the bit, whatever the thread
+//! count. `cache` (may be null) carries neighbour lists from one call to the next, see RvdCache.
 void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int threads, const PolygonVisitor& visit,
                  RvdCache* cache = nullptr);
 
