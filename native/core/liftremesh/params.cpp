@@ -59,7 +59,7 @@ const std::vector<ParameterInfo>& parameter_table() {
         {"eta", "ETA", "eta", "0.02", "radius of the neighbourhood for vertex normals, in unit-ball units"},
         {"iterations", "K", "", "100", "L-BFGS iterations (last 10%, at least 10, with sigma)"},
         {"seed", "R", "", "1", "seed of the random initial sampling"},
-        {"threads", "T", "", "0", "worker threads (0 = all cores)"},
+        {"threads", "T", "", "0", "worker threads (0 = all cores); the result does not depend on it"},
     };
     return table;
 }
