@@ -71,6 +71,7 @@ struct RvdPolygon {
 
 //! Called for every non-empty polygon with the chunk it belongs to, in [0, rvd_chunks(surface)).
 using PolygonVisitor = std::function<void(int chunk, const RvdPolygon& polygon)>;
+
 //! A visitor's per-chunk accumulator, on a cache line of its own: threads write the slots of
 //! their chunks on every polygon, and slots sharing a line would make them invalidate each
 //! other's caches.
@@ -78,10 +79,12 @@ template <class T>
 struct alignas(64) ChunkSlot {
     T value{};
 };
+
 //! The number of chunks the diagram's triangles are split into: runs of the processing order
 //! that threads take one at a time. Depends on the triangle count only (at most 256), not on
 //! the thread count.
 int rvd_chunks(const LiftedSurface& surface);
+
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
