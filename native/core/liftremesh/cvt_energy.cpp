@@ -17,29 +17,19 @@ struct ObjectiveAccumulator {
     const LiftedSurface& surface;
     const LiftedPoints& sites;
     double sigma;
-    // Per chunk of the diagram, its part of the objective and each of its sites' part of the
-    // gradient (RvdPolygon::chunk_rank), summed in visiting order; added up chunk after chunk,
-    // they give the same sums, to the bit, whatever the thread count.
-    struct Term {
-        Vec grad;
-        int32_t site;
-    };
-    struct Sums {
-        double value = 0.0;
-        std::vector<Term> terms;
-    };
-    std::vector<ChunkSlot<Sums>> sums;
+    // Per chunk of the diagram, its part of the objective and of each site's gradient, added up
+    // chunk after chunk: the same sums, to the bit, whatever the thread count.
+    std::vector<ChunkSlot<double>> values;
+    ChunkSiteSums<Vec> gradients;
 
     ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig)
-        : surface(s), sites(v), sigma(sig), sums(rvd_chunks(s)) {}
+        : surface(s), sites(v), sigma(sig), values(rvd_chunks(s)), gradients(s, Vec::Zero()) {}
 
     double total(LiftedPoints& gradient) const {
         double value = 0.0;
+        for (const auto& chunk : values) value += chunk.value;
         gradient = LiftedPoints::Zero(sites.rows(), D);
-        for (const auto& chunk : sums) {
-            value += chunk.value.value;
-            for (const Term& t : chunk.value.terms) gradient.row(t.site) += t.grad.transpose();
-        }
+        gradients.for_each([&](int32_t site, const Vec& g) { gradient.row(site) += g.transpose(); });
         return value;
     }
 
@@ -97,10 +87,8 @@ struct ObjectiveAccumulator {
             }
             g += coef_mid.x() * u1 + coef_mid.y() * u2 - coef_sum * wk;
         }
-        Sums& mine = sums[chunk].value;
-        mine.value += w * f;
-        if (poly.chunk_rank == static_cast<int32_t>(mine.terms.size())) mine.terms.push_back({Vec::Zero(), poly.site});
-        mine.terms[poly.chunk_rank].grad += w * g;
+        values[chunk].value += w * f;
+        gradients.of(chunk, poly) += w * g;
     }
 };
 

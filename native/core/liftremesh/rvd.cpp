@@ -437,20 +437,12 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
 
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
                                       RvdCache* cache) {
-    // Per chunk, each site's area in visiting order; then the chunks one after the other: the
-    // same sums whatever the thread count.
-    std::vector<ChunkSlot<std::vector<std::pair<int32_t, double>>>> areas(rvd_chunks(surface));
+    ChunkSiteSums<double> areas(surface, 0.0);
     compute_rvd(
-        surface, sites, threads,
-        [&](int chunk, const RvdPolygon& poly) {
-            auto& mine = areas[chunk].value;
-            if (poly.chunk_rank == static_cast<int32_t>(mine.size())) mine.emplace_back(poly.site, 0.0);
-            mine[poly.chunk_rank].second += polygon_area(poly);
-        },
+        surface, sites, threads, [&](int chunk, const RvdPolygon& poly) { areas.of(chunk, poly) += polygon_area(poly); },
         cache);
     Eigen::VectorXd total = Eigen::VectorXd::Zero(sites.rows());
-    for (const auto& chunk : areas)
-        for (const auto& [site, area] : chunk.value) total[site] += area;
+    areas.for_each([&](int32_t site, double area) { total[site] += area; });
     return total;
 }
 

@@ -85,6 +85,35 @@ struct alignas(64) ChunkSlot {
 //! the thread count.
 int rvd_chunks(const LiftedSurface& surface);
 
+//! Per-site sums of a visitor, kept per chunk (one entry per site of the chunk, found by
+//! RvdPolygon::chunk_rank) and added up chunk after chunk: the same sums, to the bit, whatever
+//! the thread count.
+template <class T>
+class ChunkSiteSums {
+public:
+    ChunkSiteSums(const LiftedSurface& surface, const T& zero) : zero_(zero), chunks_(rvd_chunks(surface)) {}
+    //! The running sum of the polygon's site in its chunk, `zero` the first time; from the visitor.
+    T& of(int chunk, const RvdPolygon& polygon) {
+        std::vector<Entry>& entries = chunks_[chunk].value;
+        if (polygon.chunk_rank == static_cast<int32_t>(entries.size())) entries.push_back({zero_, polygon.site});
+        return entries[polygon.chunk_rank].sum;
+    }
+    //! Calls add(site, sum) for every entry, chunk after chunk, each chunk's sites in rank order.
+    template <class Add>
+    void for_each(Add add) const {
+        for (const auto& chunk : chunks_)
+            for (const Entry& e : chunk.value) add(e.site, e.sum);
+    }
+
+private:
+    struct Entry {
+        T sum;
+        int32_t site;
+    };
+    T zero_;
+    std::vector<ChunkSlot<std::vector<Entry>>> chunks_;
+};
+
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
