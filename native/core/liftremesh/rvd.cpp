@@ -328,8 +328,18 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
                     const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
                     double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
-                    auto security_d2 = [&] { const double reach = 2.0 * std::sqrt(r2) + slack; return reach * reach; };
-                    double stop_d2 = security_d2();
+                    // (2 sqrt(r2) + slack)^2, made when needed: it is at least 4 r2, so a listed
+                    // distance below that goes on without the square root, which clipping a
+                    // polygon would otherwise pay at every cut.
+                    double stop_d2 = -1.0;
+                    auto beyond_security = [&](double d2) {
+                        if (d2 <= 4.0 * r2) return false;
+                        if (stop_d2 < 0.0) {
+                            const double reach = 2.0 * std::sqrt(r2) + slack;
+                            stop_d2 = reach * reach;
+                        }
+                        return d2 > stop_d2;
+                    };
                     const Eigen::Vector3d pk = positions.row(k).transpose();
                     // Applies the bisector of k and l if l is near enough to cut the polygon.
                     enum Outcome { kGoOn, kEmpty, kFull };
@@ -348,7 +358,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         std::swap(poly, scratch);
                         if (poly->n < 3) return kEmpty;
                         r2 = max_squared_distance(*poly, vk.ab, off_plane2);
-                        stop_d2 = security_d2();
+                        stop_d2 = -1.0;
                         return kGoOn;
                     };
                     const int32_t* list = &nn[k * k_cached];
@@ -377,7 +387,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         }
                         const int32_t l = list[j];
                         if (l == k || st.is_mover[l]) continue; // movers come below
-                        if (list_d2[j] > stop_d2) break; // security radius reached: so are all later and unlisted sites
+                        if (beyond_security(list_d2[j])) break; // security radius reached: so are all later and unlisted sites
                         if ((outcome = cut_by(l)) != kGoOn) break;
                     }
                     // The movers, wherever they are: those near k's anchor if that is far enough,
