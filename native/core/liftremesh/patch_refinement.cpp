@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -56,12 +57,11 @@ public:
         bool any = false;
         for (const auto& [negative_length, key] : candidates) {
             const auto& use = uses.at(key);
-            const int t1 = use[0].tri, t2 = use[1].tri;
-            if (touched[t1] || touched[t2]) continue;
+            if (touched[use[0].tri] || touched[use[1].tri]) continue;
             if (added() >= max_added) break;
-            const int32_t a = tris_[t1][use[0].j], b = tris_[t1][(use[0].j + 1) % 3], c = tris_[t1][(use[0].j + 2) % 3];
-            if (tris_[t2][use[1].j] != b) continue; // t2 must run b -> a -> d (orientation)
-            const int32_t d = tris_[t2][(use[1].j + 2) % 3];
+            const auto quad = quad_of(use);
+            if (!quad) continue;
+            const auto [t1, t2, a, b, c, d] = *quad;
             const auto m = static_cast<int32_t>(points_.size());
             points_.push_back(0.5 * (points_[a] + points_[b]));
             tris_[t1] = {a, m, c};
@@ -90,11 +90,10 @@ public:
             bool any = false;
             for (uint64_t key : keys) {
                 const auto& use = uses.at(key);
-                const int t1 = use[0].tri, t2 = use[1].tri;
-                if (touched[t1] || touched[t2]) continue;
-                const int32_t a = tris_[t1][use[0].j], b = tris_[t1][(use[0].j + 1) % 3], c = tris_[t1][(use[0].j + 2) % 3];
-                if (tris_[t2][use[1].j] != b) continue; // t2 must run b -> a -> d (orientation)
-                const int32_t d = tris_[t2][(use[1].j + 2) % 3];
+                if (touched[use[0].tri] || touched[use[1].tri]) continue;
+                const auto quad = quad_of(use);
+                if (!quad) continue;
+                const auto [t1, t2, a, b, c, d] = *quad;
                 if (c == d || edges.count(edge_key(c, d))) continue;
                 // The quad a -> d -> b -> c: the new triangles keep its orientation.
                 const Tri n1 = {a, d, c}, n2 = {d, b, c};
@@ -161,6 +160,20 @@ public:
     }
 
 private:
+    // The two patch triangles of a shared edge, t1 running a -> b -> c and t2 b -> a -> d (the
+    // quad a -> d -> b -> c); none if t2 does not run the edge the other way, as splitting and
+    // flipping assume.
+    struct Quad {
+        int t1, t2;
+        int32_t a, b, c, d;
+    };
+    std::optional<Quad> quad_of(const std::vector<Use>& use) const {
+        const Tri &first = tris_[use[0].tri], &second = tris_[use[1].tri];
+        const int32_t a = first[use[0].j], b = first[(use[0].j + 1) % 3], c = first[(use[0].j + 2) % 3];
+        if (second[use[1].j] != b) return std::nullopt;
+        return Quad{use[0].tri, use[1].tri, a, b, c, second[(use[1].j + 2) % 3]};
+    }
+
     std::unordered_map<uint64_t, std::vector<Use>> edge_uses() const {
         std::unordered_map<uint64_t, std::vector<Use>> uses;
         for (size_t f = 0; f < tris_.size(); ++f)
