@@ -1,0 +1,89 @@
+#include "liftremesh/editable_mesh.h"
+
+#include "liftremesh/geometry.h"
+
+namespace liftremesh {
+
+namespace {
+constexpr double kCos30 = 0.86602540378443865; // largest turn of a triangle's normal in a flip
+} // namespace
+
+EditableMesh::EditableMesh(const Mesh& mesh, Eigen::Index first) {
+    points.reserve(static_cast<size_t>(mesh.points.rows()));
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) points.push_back(mesh.points.row(i).transpose());
+    for (Eigen::Index f = first; f < mesh.triangles.rows(); ++f)
+        tris.push_back({mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)});
+}
+
+std::unordered_map<uint64_t, std::vector<EditableMesh::Use>> EditableMesh::edge_uses() const {
+    std::unordered_map<uint64_t, std::vector<Use>> uses;
+    for (size_t f = 0; f < tris.size(); ++f)
+        for (int j = 0; j < 3; ++j) uses[edge_key(tris[f][j], tris[f][(j + 1) % 3])].push_back({static_cast<int>(f), j});
+    return uses;
+}
+
+std::optional<EditableMesh::Quad> EditableMesh::quad_of(const std::vector<Use>& uses) const {
+    if (uses.size() != 2) return std::nullopt;
+    const Tri &first = tris[uses[0].tri], &second = tris[uses[1].tri];
+    const int32_t a = first[uses[0].j], b = first[(uses[0].j + 1) % 3], c = first[(uses[0].j + 2) % 3];
+    if (second[uses[1].j] != b) return std::nullopt;
+    return Quad{uses[0].tri, uses[1].tri, a, b, c, second[(uses[1].j + 2) % 3]};
+}
+
+Eigen::Vector3d EditableMesh::normal(const Tri& t) const {
+    return (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]);
+}
+
+double EditableMesh::kappa(const Tri& t) const { return triangle_kappa(points[t[0]], points[t[1]], points[t[2]]); }
+
+bool EditableMesh::turns_little(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+    const double n = u.norm() * v.norm();
+    return n > 0.0 && u.dot(v) >= kCos30 * n;
+}
+
+std::pair<EditableMesh::Tri, EditableMesh::Tri> EditableMesh::flipped(const Quad& q) {
+    return {Tri{q.a, q.d, q.c}, Tri{q.d, q.b, q.c}};
+}
+
+bool EditableMesh::flip_improves_quality(const Quad& q) const {
+    const auto [n1, n2] = flipped(q);
+    const Eigen::Vector3d before1 = normal(tris[q.t1]), before2 = normal(tris[q.t2]);
+    if (!turns_little(before1, before2)) return false; // not a near-planar quad: the flip would change the shape
+    const Eigen::Vector3d mean = before1.normalized() + before2.normalized();
+    if (!turns_little(mean, normal(n1)) || !turns_little(mean, normal(n2))) return false;
+    return std::min(kappa(n1), kappa(n2)) > std::min(kappa(tris[q.t1]), kappa(tris[q.t2])) + 1e-9;
+}
+
+void EditableMesh::flip(const Quad& q) {
+    const auto [n1, n2] = flipped(q);
+    tris[q.t1] = n1;
+    tris[q.t2] = n2;
+}
+
+int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
+    const auto m = static_cast<int32_t>(points.size());
+    points.push_back(p);
+    tris[q.t1] = {q.a, m, q.c};
+    tris[q.t2] = {q.b, m, q.d};
+    tris.push_back({m, q.b, q.c});
+    tris.push_back({m, q.a, q.d});
+    return m;
+}
+
+Mesh EditableMesh::to_mesh() const {
+    Mesh mesh;
+    write_to(mesh, 0);
+    return mesh;
+}
+
+void EditableMesh::write_to(Mesh& mesh, Eigen::Index first) const {
+    const Eigen::Index old_points = mesh.points.rows();
+    mesh.points.conservativeResize(static_cast<Eigen::Index>(points.size()), 3);
+    for (size_t i = static_cast<size_t>(old_points); i < points.size(); ++i)
+        mesh.points.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+    mesh.triangles.conservativeResize(first + static_cast<Eigen::Index>(tris.size()), 3);
+    for (size_t k = 0; k < tris.size(); ++k)
+        for (int j = 0; j < 3; ++j) mesh.triangles(first + static_cast<Eigen::Index>(k), j) = tris[k][j];
+}
+
+} // namespace liftremesh

@@ -1,0 +1,70 @@
+// A triangle mesh under local edits (edge and triangle splits, edge flips), as the steps after
+// the restricted Delaunay triangulation make them: refining hole patches (patch_refinement.h)
+// and inserting the input's farthest points (hausdorff_refinement.h). Points and triangles in
+// plain vectors; edges are found through edge_uses(), made again after a batch of edits.
+#pragma once
+
+#include "liftremesh/mesh.h"
+
+#include <array>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace liftremesh {
+
+class EditableMesh {
+public:
+    using Tri = std::array<int32_t, 3>;
+    //! A triangle's use of an edge: the edge runs tris[tri][j] -> tris[tri][j + 1].
+    struct Use {
+        int tri, j;
+    };
+    //! The two triangles of an edge used once each way: t1 runs a -> b -> c and t2 b -> a -> d
+    //! (the quad a -> d -> b -> c).
+    struct Quad {
+        int t1, t2;
+        int32_t a, b, c, d;
+    };
+
+    //! All points of `mesh`, and its triangles from index `first` on (the editable ones).
+    explicit EditableMesh(const Mesh& mesh, Eigen::Index first = 0);
+
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Tri> tris;
+
+    //! The uses of every edge of `tris`, by edge_key.
+    std::unordered_map<uint64_t, std::vector<Use>> edge_uses() const;
+    //! The quad of an edge with exactly two uses in opposite directions, the first use's
+    //! triangle as t1; none otherwise (boundary, non-manifold or misoriented edge).
+    std::optional<Quad> quad_of(const std::vector<Use>& uses) const;
+
+    //! Normal of a triangle, of length twice its area (zero if degenerate).
+    Eigen::Vector3d normal(const Tri& t) const;
+    //! Aspect ratio kappa (Eq. 26).
+    double kappa(const Tri& t) const;
+    //! Whether u and v (any non-zero lengths) make at most 30 degrees; false if one is zero.
+    static bool turns_little(const Eigen::Vector3d& u, const Eigen::Vector3d& v);
+
+    //! The two triangles (a, d, c), (d, b, c) that replace the quad's when its edge is flipped
+    //! to c-d; they keep the quad's orientation.
+    static std::pair<Tri, Tri> flipped(const Quad& q);
+    //! Whether flipping the quad's edge is a fair quality flip: the quad is nearly planar (its
+    //! triangles, and each new one against their mean normal, turn by at most 30 degrees) and
+    //! the smaller kappa of its two triangles goes up.
+    bool flip_improves_quality(const Quad& q) const;
+    //! Flips the quad's edge: t1 and t2 become flipped(q).
+    void flip(const Quad& q);
+    //! Splits the quad's edge at p, a new point m: t1 and t2 become (a, m, c) and (b, m, d),
+    //! (m, b, c) and (m, a, d) are appended. Returns m.
+    int32_t split_edge(const Quad& q, const Eigen::Vector3d& p);
+
+    //! The points and the editable triangles as a mesh (all of the mesh when first was 0).
+    Mesh to_mesh() const;
+    //! Writes the edits back into the mesh it was made from: new points appended, its triangles
+    //! from `first` on replaced by `tris`.
+    void write_to(Mesh& mesh, Eigen::Index first = 0) const;
+};
+
+} // namespace liftremesh
