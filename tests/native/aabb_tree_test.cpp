@@ -125,3 +125,31 @@ TEST(AabbTree, WarmStartGivesTheSameDistanceAsAColdQuery) {
     const ClosestPoint exact = tree.closest(q);
     EXPECT_EQ(tree.closest(q, exact.point).squared_distance, exact.squared_distance);
 }
+
+TEST(AabbTree, AnyWithinFindsATriangleExactlyWhenOneIsNearerThanTheRadius) {
+    const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
+    const AabbTree tree(m);
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6), radius(0.0, 0.4);
+    int hits = 0, misses = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
+        const double r = radius(rng);
+        const double nearest = std::sqrt(brute_force_closest(m, q).squared_distance);
+        const int32_t t = tree.any_within(q, r);
+        if (nearest < r * (1 - 1e-9)) {
+            ASSERT_GE(t, 0) << i;
+            ++hits;
+            const Eigen::Vector3d p = closest_point_on_triangle(q, m.points.row(m.triangles(t, 0)).transpose(),
+                                                                m.points.row(m.triangles(t, 1)).transpose(),
+                                                                m.points.row(m.triangles(t, 2)).transpose());
+            EXPECT_LT((p - q).norm(), r) << i; // the triangle returned is within the radius
+        } else if (nearest > r * (1 + 1e-9)) {
+            EXPECT_EQ(t, -1) << i;
+            ++misses;
+        }
+    }
+    EXPECT_GT(hits, 100);
+    EXPECT_GT(misses, 100);
+    EXPECT_EQ(AabbTree(Mesh{}).any_within(Eigen::Vector3d::Zero(), 1.0), -1);
+}

@@ -126,7 +126,11 @@ ClosestPoint AabbTree::closest(const Eigen::Vector3d& q, const Eigen::Vector3d& 
     return search(q, {on_mesh, (on_mesh - q).squaredNorm(), -1});
 }
 
-ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best) const {
+int32_t AabbTree::any_within(const Eigen::Vector3d& q, double r) const {
+    return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, true).triangle;
+}
+
+ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit) const {
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
 
@@ -143,7 +147,10 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best) const
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
                 const double d2 = (p - q).squaredNorm();
-                if (d2 < best.squared_distance) best = {p, d2, impl_->ids[t]};
+                if (d2 < best.squared_distance) {
+                    best = {p, d2, impl_->ids[t]};
+                    if (first_hit) return best;
+                }
             }
             continue;
         }

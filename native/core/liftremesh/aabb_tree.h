@@ -34,8 +34,13 @@ public:
     //! If no triangle is strictly nearer, the answer is `on_mesh` itself with triangle -1.
     ClosestPoint closest(const Eigen::Vector3d& q, const Eigen::Vector3d& on_mesh) const;
 
+    //! A triangle strictly nearer to q than r, or -1 if there is none: a search bounded by r
+    //! that stops at the first such triangle, far cheaper than closest() when r is small.
+    int32_t any_within(const Eigen::Vector3d& q, double r) const;
+
 private:
-    ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best) const; // best: initial bound
+    //! best: initial bound; first_hit: return as soon as a triangle beats it.
+    ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
