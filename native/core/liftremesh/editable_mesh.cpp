@@ -15,14 +15,33 @@ EditableMesh::EditableMesh(const Mesh& mesh, Eigen::Index first) {
         tris.push_back({mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)});
 }
 
-std::unordered_map<uint64_t, std::vector<EditableMesh::Use>> EditableMesh::edge_uses() const {
-    std::unordered_map<uint64_t, std::vector<Use>> uses;
+namespace {
+void add_use(std::unordered_map<uint64_t, EditableMesh::Uses>& uses, uint64_t key, int tri, int j) {
+    EditableMesh::Uses& u = uses[key];
+    if (u.count < 2) u.first[u.count] = {tri, j};
+    ++u.count;
+}
+} // namespace
+
+std::unordered_map<uint64_t, EditableMesh::Uses> EditableMesh::edge_uses() const {
+    std::unordered_map<uint64_t, Uses> uses;
+    uses.reserve(2 * tris.size());
     for (size_t f = 0; f < tris.size(); ++f)
-        for (int j = 0; j < 3; ++j) uses[edge_key(tris[f][j], tris[f][(j + 1) % 3])].push_back({static_cast<int>(f), j});
+        for (int j = 0; j < 3; ++j) add_use(uses, edge_key(tris[f][j], tris[f][(j + 1) % 3]), static_cast<int>(f), j);
     return uses;
 }
 
-std::optional<EditableMesh::Quad> EditableMesh::quad_of(const std::vector<Use>& uses) const {
+std::unordered_map<uint64_t, EditableMesh::Uses> EditableMesh::edge_uses_around(const std::vector<char>& flagged) const {
+    std::unordered_map<uint64_t, Uses> uses;
+    for (size_t f = 0; f < tris.size(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = tris[f][j], b = tris[f][(j + 1) % 3];
+            if (flagged[a] || flagged[b]) add_use(uses, edge_key(a, b), static_cast<int>(f), j);
+        }
+    return uses;
+}
+
+std::optional<EditableMesh::Quad> EditableMesh::quad_of(const Uses& uses) const {
     if (uses.size() != 2) return std::nullopt;
     const Tri &first = tris[uses[0].tri], &second = tris[uses[1].tri];
     const int32_t a = first[uses[0].j], b = first[(uses[0].j + 1) % 3], c = first[(uses[0].j + 2) % 3];

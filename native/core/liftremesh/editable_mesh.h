@@ -21,6 +21,13 @@ public:
     struct Use {
         int tri, j;
     };
+    //! The uses of one edge: how many, and the first two (all an edge of a manifold has).
+    struct Uses {
+        int count = 0;
+        std::array<Use, 2> first{};
+        size_t size() const { return static_cast<size_t>(count); }
+        const Use& operator[](int i) const { return first[i]; }
+    };
     //! The two triangles of an edge used once each way: t1 runs a -> b -> c and t2 b -> a -> d
     //! (the quad a -> d -> b -> c).
     struct Quad {
@@ -35,10 +42,14 @@ public:
     std::vector<Tri> tris;
 
     //! The uses of every edge of `tris`, by edge_key.
-    std::unordered_map<uint64_t, std::vector<Use>> edge_uses() const;
+    std::unordered_map<uint64_t, Uses> edge_uses() const;
+    //! The uses of the edges with at least one end flagged (#points flags): for edits in a small
+    //! part of a large mesh, all it needs there (the quads of the flagged triangles' edges, and
+    //! whether two flagged vertices are joined) for one scan of the triangles.
+    std::unordered_map<uint64_t, Uses> edge_uses_around(const std::vector<char>& flagged) const;
     //! The quad of an edge with exactly two uses in opposite directions, the first use's
     //! triangle as t1; none otherwise (boundary, non-manifold or misoriented edge).
-    std::optional<Quad> quad_of(const std::vector<Use>& uses) const;
+    std::optional<Quad> quad_of(const Uses& uses) const;
 
     //! Normal of a triangle, of length twice its area (zero if degenerate).
     Eigen::Vector3d normal(const Tri& t) const;
