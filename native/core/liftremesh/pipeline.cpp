@@ -4,6 +4,7 @@
 #include "liftremesh/density.h"
 #include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
+#include "liftremesh/hausdorff_refinement.h"
 #include "liftremesh/hole_filling.h"
 #include "liftremesh/memory_budget.h"
 #include "liftremesh/mesh_io.h"
@@ -24,6 +25,9 @@
 namespace liftremesh {
 
 namespace {
+
+// An equilateral mesh of edge h has about 2 triangles per vertex: area sqrt(3)/2 h^2 per vertex.
+double area_per_vertex(double h) { return std::sqrt(3.0) / 2.0 * h * h; }
 
 // Times stages into the report and gives the caller a chance to cancel between them.
 class StageClock {
@@ -79,9 +83,8 @@ std::function<bool(const std::vector<int32_t>&)> hole_is_artefact(const Mesh& in
 
 long target_site_count(const RemeshParams& params, double area) {
     if (params.target_edge_length <= 0.0) return params.target_vertices;
-    // An equilateral mesh of edge h has about 2 triangles per vertex: area sqrt(3)/2 h^2 per vertex.
     const double h = params.target_edge_length;
-    const double n = std::round(area / (std::sqrt(3.0) / 2.0 * h * h));
+    const double n = std::round(area / area_per_vertex(h));
     if (!(n >= 4.0) || n > static_cast<double>(kMaxVertices)) {
         std::ostringstream message;
         message << "edge_length = " << h << " gives " << n << " vertices on this surface of area " << area
@@ -140,8 +143,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     clock.begin("repair");
     const RepairStats repaired = make_manifold(out);
     report.triangles_removed = repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
+    // The edge length of an equilateral mesh with the vertices asked for, in unit-ball units.
+    const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
     if (params.fill_holes) {
-        const double spacing = std::sqrt(surface_area(unit) / (std::sqrt(3.0) / 2.0 * sites_wanted));
         const Eigen::Index first_fill = out.triangles.rows();
         report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
         // Vertices inside the patches, which the paper leaves empty: at most a tenth of those asked for.
@@ -153,6 +157,14 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     // After the collapse, which may keep an interior end point of an edge at the boundary, and in
     // the input's coordinates, so that snapped corners are exactly the input's.
     report.boundary_vertices_snapped = snap_boundary(out, input).moved();
+    // Sharp edges cut off by a chamfer (edge crunching, Section 6.2.2) get their crease points;
+    // after the snap, so that an open input's boundary, where the output now lies, is no witness.
+    HausdorffRefinementParams towards_input;
+    towards_input.tolerance = 0.15 * spacing * to_unit.scale;
+    towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
+    towards_input.max_distance = spacing * to_unit.scale;
+    towards_input.max_inserted = sites_wanted / 100;
+    report.vertices_inserted = refine_towards_input(out, input, towards_input).inserted;
     clock.end();
 
     clock.begin("quality");

@@ -136,6 +136,7 @@ std::string to_json(const RemeshReport& report) {
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},
                         {"edges_collapsed", json_number(report.edges_collapsed)},
+                        {"vertices_inserted", json_number(report.vertices_inserted)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
                         {"timings", json_timings(report.timings, 2)},
                         {"warnings", json_array(report.warnings, json_string)}},
