@@ -15,8 +15,9 @@
 //   at most half as far from the input (the edge that cut across the crease), or where a
 //   quality flip of a nearly planar quad raises the worse kappa (EditableMesh) without moving
 //   the surface away from the input;
-// repeated for a few rounds. Smooth surfaces at the method's sampling have chords well within
-// the tolerance and are left as they are.
+// repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
+// the tolerance; where a strongly curved part does not, the points inserted bring it closer too
+// (the bunny at 50000 vertices takes 40).
 #pragma once
 
 #include "liftremesh/mesh.h"
