@@ -19,9 +19,7 @@ using Tri = EditableMesh::Tri;
 
 // The input's referenced vertices, then points along each of its edges at most `spacing` apart.
 std::vector<Eigen::Vector3d> edge_samples(const Mesh& input, double spacing) {
-    std::vector<char> used(static_cast<size_t>(input.points.rows()), 0);
-    for (Eigen::Index f = 0; f < input.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) used[input.triangles(f, j)] = 1;
+    const std::vector<char> used = referenced_vertices(input);
     std::vector<Eigen::Vector3d> samples;
     for (Eigen::Index i = 0; i < input.points.rows(); ++i)
         if (used[i]) samples.push_back(input.points.row(i).transpose());

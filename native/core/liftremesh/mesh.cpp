@@ -98,10 +98,15 @@ int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, st
     return count;
 }
 
-int euler_characteristic(const Mesh& mesh) {
-    std::vector<char> used(mesh.points.rows(), 0);
+std::vector<char> referenced_vertices(const Mesh& mesh) {
+    std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
         for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    return used;
+}
+
+int euler_characteristic(const Mesh& mesh) {
+    const std::vector<char> used = referenced_vertices(mesh);
     const long v = std::count(used.begin(), used.end(), 1);
     const long e = static_cast<long>(edge_counts(mesh.triangles).size());
     return static_cast<int>(v - e + mesh.triangles.rows());

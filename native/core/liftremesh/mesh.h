@@ -69,6 +69,9 @@ inline std::uint64_t edge_key(int32_t a, int32_t b) {
 //! appearance) and returns the count: 1 at a manifold vertex, 0 if `around` is empty.
 int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan);
 
+//! #V flags, 1 for the vertices some triangle refers to.
+std::vector<char> referenced_vertices(const Mesh& mesh);
+
 //! V - E + F counting only vertices referenced by a triangle.
 int euler_characteristic(const Mesh& mesh);
 

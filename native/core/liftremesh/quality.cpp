@@ -139,9 +139,7 @@ double uniform01(std::uint64_t& state) { return static_cast<double>(splitmix64(s
 //! Morton curve, so consecutive points are near each other (see distances_to).
 std::vector<Eigen::Vector3d> sample_surface(const Mesh& mesh, long samples, std::uint64_t seed) {
     const Eigen::Index nf = mesh.triangles.rows();
-    std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
-    for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    const std::vector<char> used = referenced_vertices(mesh);
     std::vector<Eigen::Vector3d> vertices;
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
         if (used[i]) vertices.push_back(mesh.points.row(i).transpose());
@@ -212,9 +210,7 @@ std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, con
 MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
     check_indices(mesh, "measured mesh");
     MeshQuality q;
-    std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) used[mesh.triangles(f, j)] = 1;
+    const std::vector<char> used = referenced_vertices(mesh);
     q.vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
     measure_triangles(mesh, q);
     measure_edges(mesh, sharp_angle_deg, q);
