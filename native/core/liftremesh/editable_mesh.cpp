@@ -79,6 +79,29 @@ void EditableMesh::flip(const Quad& q) {
     tris[q.t2] = n2;
 }
 
+long EditableMesh::flip_pass(const std::unordered_map<uint64_t, Uses>& uses, const std::vector<uint64_t>& keys,
+                             const std::unordered_set<uint64_t>& fixed_edges,
+                             const std::function<bool(const Quad&)>& accept, std::vector<char>& flipped) {
+    flipped.assign(tris.size(), 0);
+    std::unordered_set<uint64_t> made, gone; // edges flipped in and out in this pass
+    long flips = 0;
+    for (uint64_t key : keys) {
+        const Uses& use = uses.at(key);
+        if (flipped[use[0].tri] || flipped[use[1].tri]) continue;
+        const auto quad = quad_of(use);
+        if (!quad || quad->c == quad->d) continue;
+        const uint64_t cd = edge_key(quad->c, quad->d);
+        if (made.count(cd) || fixed_edges.count(cd) || (uses.count(cd) && !gone.count(cd))) continue;
+        if (!accept(*quad)) continue;
+        gone.insert(key);
+        made.insert(cd);
+        flip(*quad);
+        flipped[quad->t1] = flipped[quad->t2] = 1;
+        ++flips;
+    }
+    return flips;
+}
+
 int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
     const auto m = static_cast<int32_t>(points.size());
     points.push_back(p);

@@ -7,8 +7,10 @@
 #include "liftremesh/mesh.h"
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -67,6 +69,14 @@ public:
     bool flip_improves_quality(const Quad& q) const;
     //! Flips the quad's edge: t1 and t2 become flipped(q).
     void flip(const Quad& q);
+    //! One pass of flips over `keys`, edges of `uses` (made from `tris` before the pass), in
+    //! that order: an edge whose two triangles the pass has not changed yet is flipped to c-d
+    //! when its quad has c != d, no edge c-d exists (in `uses`, in `fixed_edges`, or flipped in
+    //! earlier in the pass) and accept(quad) holds. `flipped` comes back with a flag per triangle
+    //! changed. Returns the number of flips.
+    long flip_pass(const std::unordered_map<uint64_t, Uses>& uses, const std::vector<uint64_t>& keys,
+                   const std::unordered_set<uint64_t>& fixed_edges, const std::function<bool(const Quad&)>& accept,
+                   std::vector<char>& flipped);
     //! Splits the quad's edge at p, a new point m: t1 and t2 become (a, m, c) and (b, m, d),
     //! (m, b, c) and (m, a, d) are appended. Returns m.
     int32_t split_edge(const Quad& q, const Eigen::Vector3d& p);

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 namespace liftremesh {
@@ -71,27 +70,17 @@ public:
             for (size_t t = 0; t < mesh_.tris.size(); ++t)
                 if (near_[t])
                     for (int32_t v : mesh_.tris[t]) flagged[v] = 1;
+            // Every edge with a flagged end is in `uses`, so an edge c-d of a quad here is too.
             const auto uses = mesh_.edge_uses_around(flagged);
-            std::unordered_set<uint64_t> made, gone; // edges flipped in and out in this pass
-            auto exists = [&](uint64_t key) { return made.count(key) || (uses.count(key) && !gone.count(key)); };
             std::vector<uint64_t> keys;
             for (const auto& [key, use] : uses)
                 if (use.size() == 2 && (near_[use[0].tri] || near_[use[1].tri])) keys.push_back(key);
             std::sort(keys.begin(), keys.end());
-            std::vector<char> touched(mesh_.tris.size(), 0);
-            long flips = 0;
-            for (uint64_t key : keys) {
-                const auto& use = uses.at(key);
-                if (touched[use[0].tri] || touched[use[1].tri]) continue;
-                const auto quad = mesh_.quad_of(use);
-                if (!quad || quad->c == quad->d || exists(edge_key(quad->c, quad->d))) continue;
-                if (!should_flip(*quad)) continue;
-                gone.insert(key);
-                made.insert(edge_key(quad->c, quad->d));
-                mesh_.flip(*quad);
-                touched[quad->t1] = touched[quad->t2] = near_[quad->t1] = near_[quad->t2] = 1;
-                ++flips;
-            }
+            std::vector<char> changed;
+            const long flips = mesh_.flip_pass(
+                uses, keys, {}, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
+            for (size_t t = 0; t < changed.size(); ++t)
+                if (changed[t]) near_[t] = 1;
             flipped += flips;
             if (flips == 0) break;
         }
@@ -113,8 +102,8 @@ private:
         const double tol2 = params_.tolerance * params_.tolerance;
         const long n = static_cast<long>(samples.size());
         proof_.resize(samples.size(), -1);
-        const std::vector<char>& changed = near_; // last round's edits (empty in the first)
-        auto unchanged = [&](int32_t t) { return t >= 0 && (static_cast<size_t>(t) >= changed.size() || !changed[t]); };
+        const std::vector<char>& changed = near_; // last round's edits (no proof_ yet in the first)
+        auto unchanged = [&](int32_t t) { return t >= 0 && !changed[t]; };
         auto within = [&](int32_t t, const Eigen::Vector3d& q) {
             const Tri& x = mesh_.tris[t];
             const Eigen::Vector3d& a = mesh_.points[x[0]];

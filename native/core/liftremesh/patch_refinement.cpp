@@ -55,31 +55,15 @@ public:
 
     // Flips shared patch edges while a flip raises the smaller kappa of its two triangles.
     void flip_edges() {
-        std::unordered_set<uint64_t> edges = outside_;
-        for (const Tri& t : mesh_.tris)
-            for (int j = 0; j < 3; ++j) edges.insert(edge_key(t[j], t[(j + 1) % 3]));
+        std::vector<char> flipped;
         for (int pass = 0; pass < 20; ++pass) {
             const auto uses = mesh_.edge_uses();
             std::vector<uint64_t> keys;
             for (const auto& [key, use] : uses)
                 if (use.size() == 2) keys.push_back(key);
             std::sort(keys.begin(), keys.end());
-            std::vector<char> touched(mesh_.tris.size(), 0);
-            bool any = false;
-            for (uint64_t key : keys) {
-                const auto& use = uses.at(key);
-                if (touched[use[0].tri] || touched[use[1].tri]) continue;
-                const auto quad = mesh_.quad_of(use);
-                if (!quad) continue;
-                if (quad->c == quad->d || edges.count(edge_key(quad->c, quad->d))) continue;
-                if (!mesh_.flip_improves_quality(*quad)) continue;
-                edges.erase(key);
-                edges.insert(edge_key(quad->c, quad->d));
-                mesh_.flip(*quad);
-                touched[quad->t1] = touched[quad->t2] = 1;
-                any = true;
-            }
-            if (!any) break;
+            auto better = [&](const EditableMesh::Quad& q) { return mesh_.flip_improves_quality(q); };
+            if (mesh_.flip_pass(uses, keys, outside_, better, flipped) == 0) break;
         }
     }
 
