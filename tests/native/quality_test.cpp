@@ -56,6 +56,7 @@ TEST(Quality, EquilateralPatchHasKappaOne) {
     EXPECT_EQ(histogram_total(q), 36);
     EXPECT_NEAR(q.min_angle_deg, 60.0, 1e-9);
     EXPECT_EQ(q.boundary_edges, 18); // 3 sides of 6 unit edges
+    EXPECT_EQ(q.boundary_loops, 1);
     EXPECT_EQ(q.nonmanifold_edges, 0);
     EXPECT_EQ(q.nonmanifold_vertices, 0);
     EXPECT_TRUE(q.oriented);
@@ -69,6 +70,7 @@ TEST(Quality, IcosphereIsClosedOrientedGenusZero) {
     EXPECT_EQ(q.vertices, 162);
     EXPECT_EQ(q.triangles, 320);
     EXPECT_EQ(q.boundary_edges, 0);
+    EXPECT_EQ(q.boundary_loops, 0);
     EXPECT_EQ(q.nonmanifold_edges, 0);
     EXPECT_EQ(q.nonmanifold_vertices, 0);
     EXPECT_TRUE(q.oriented);
@@ -96,9 +98,42 @@ TEST(Quality, RemovingOneTriangleOpensThreeBoundaryEdges) {
     mesh.triangles.conservativeResize(mesh.triangles.rows() - 1, 3);
     const MeshQuality q = measure_quality(mesh);
     EXPECT_EQ(q.boundary_edges, 3);
+    EXPECT_EQ(q.boundary_loops, 1);
     EXPECT_EQ(q.euler_characteristic, 1);
     EXPECT_TRUE(q.oriented);
     EXPECT_EQ(q.nonmanifold_vertices, 0);
+}
+
+TEST(Quality, BoundaryLoopsAreTheComponentsOfTheBoundary) {
+    // Two triangles far apart removed: two loops, each chi -1.
+    Mesh mesh = test::make_icosphere(2);
+    const Eigen::Index nf = mesh.triangles.rows();
+    std::vector<char> keep(nf, 1);
+    keep[0] = 0;
+    const Eigen::Vector3d c0 = (corner(mesh, 0, 0) + corner(mesh, 0, 1) + corner(mesh, 0, 2)) / 3.0;
+    Eigen::Index far = 0;
+    for (Eigen::Index f = 0; f < nf; ++f)
+        if (((corner(mesh, f, 0) + corner(mesh, f, 1) + corner(mesh, f, 2)) / 3.0).dot(c0) <
+            ((corner(mesh, far, 0) + corner(mesh, far, 1) + corner(mesh, far, 2)) / 3.0).dot(c0))
+            far = f;
+    keep[far] = 0;
+    Triangles kept(nf - 2, 3);
+    for (Eigen::Index f = 0, k = 0; f < nf; ++f)
+        if (keep[f]) kept.row(k++) = mesh.triangles.row(f);
+    mesh.triangles = kept;
+    const MeshQuality q = measure_quality(mesh);
+    EXPECT_EQ(q.boundary_edges, 6);
+    EXPECT_EQ(q.boundary_loops, 2);
+    EXPECT_EQ(q.euler_characteristic, 0);
+
+    // Two triangles touching at one vertex (a bow tie): their borders meet there, one loop.
+    const Mesh bowtie =
+        test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
+    EXPECT_EQ(measure_quality(bowtie).boundary_loops, 1);
+    // Apart: two.
+    const Mesh apart =
+        test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}, {-0.5, 0, 0}}, {{0, 1, 2}, {5, 3, 4}});
+    EXPECT_EQ(measure_quality(apart).boundary_loops, 2);
 }
 
 TEST(Quality, NonManifoldEdgesAndVertices) {

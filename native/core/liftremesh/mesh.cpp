@@ -70,14 +70,27 @@ std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
     return out;
 }
 
-int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan) {
-    const int n = static_cast<int>(around.size());
-    std::vector<int> parent(n);
+int connected_components(int n, const std::vector<std::pair<int, int>>& links, std::vector<int>& label) {
+    std::vector<int> parent(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) parent[i] = i;
     auto find = [&](int i) {
         while (parent[i] != i) i = parent[i] = parent[parent[i]];
         return i;
     };
+    for (const auto& [a, b] : links) parent[find(a)] = find(b);
+    label.assign(static_cast<size_t>(n), -1);
+    std::vector<int> label_of_root(static_cast<size_t>(n), -1);
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+        int& root_label = label_of_root[find(i)];
+        if (root_label < 0) root_label = count++;
+        label[i] = root_label;
+    }
+    return count;
+}
+
+int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan) {
+    const int n = static_cast<int>(around.size());
     // Spokes (w, i): triangle i has the edge (v, w). Triangles with a common spoke share that edge.
     std::vector<std::pair<int32_t, int>> spokes;
     spokes.reserve(2 * around.size());
@@ -85,17 +98,10 @@ int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, st
         for (int32_t w : around[i])
             if (w != v) spokes.emplace_back(w, i);
     std::sort(spokes.begin(), spokes.end());
+    std::vector<std::pair<int, int>> shared;
     for (size_t k = 1; k < spokes.size(); ++k)
-        if (spokes[k].first == spokes[k - 1].first) parent[find(spokes[k].second)] = find(spokes[k - 1].second);
-    fan.assign(n, -1);
-    std::vector<int> label_of_root(n, -1);
-    int count = 0;
-    for (int i = 0; i < n; ++i) {
-        int& label = label_of_root[find(i)];
-        if (label < 0) label = count++;
-        fan[i] = label;
-    }
-    return count;
+        if (spokes[k].first == spokes[k - 1].first) shared.emplace_back(spokes[k].second, spokes[k - 1].second);
+    return connected_components(n, shared, fan);
 }
 
 std::vector<char> referenced_vertices(const Mesh& mesh) {

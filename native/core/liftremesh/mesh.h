@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace liftremesh {
@@ -62,6 +63,10 @@ inline std::uint64_t edge_key(int32_t a, int32_t b) {
     const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
     return (static_cast<std::uint64_t>(lo) << 32) | hi;
 }
+
+//! Connected components of the graph on nodes 0 .. n-1 with the given links: writes each node's
+//! component into `label` (0 .. count-1, numbered in order of first appearance), returns count.
+int connected_components(int n, const std::vector<std::pair<int, int>>& links, std::vector<int>& label);
 
 //! Groups the triangles around vertex v into fans: two triangles are in one fan when a chain of
 //! edges (v, w) shared by triangles joins them. `around` lists the corners of the triangles that

@@ -78,11 +78,12 @@ double normal_angle_deg(const Mesh& mesh, const EdgeUse& s, const EdgeUse& t) {
 
 void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
     const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
+    std::vector<std::pair<int, int>> boundary;
     for (size_t i = 0; i < uses.size();) {
         size_t j = i;
         while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
         const size_t count = j - i;
-        if (count == 1) ++q.boundary_edges;
+        if (count == 1) boundary.emplace_back(uses[i].a, uses[i].b);
         if (count >= 3) ++q.nonmanifold_edges;
         if (count == 2) {
             if (uses[i].forward == uses[i + 1].forward) q.oriented = false;
@@ -91,6 +92,16 @@ void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
         }
         i = j;
     }
+    q.boundary_edges = static_cast<long>(boundary.size());
+    // Boundary loops: the connected components of the boundary edges.
+    std::vector<int> component;
+    connected_components(static_cast<int>(mesh.points.rows()), boundary, component);
+    std::vector<char> counted(mesh.points.rows(), 0);
+    for (const auto& [a, b] : boundary)
+        if (!counted[component[a]]) {
+            counted[component[a]] = 1;
+            ++q.boundary_loops;
+        }
 }
 
 // ---- per vertex ---------------------------------------------------------------------------------

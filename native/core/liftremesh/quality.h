@@ -17,6 +17,9 @@ struct MeshQuality {
     std::array<long, 10> kappa_histogram{}; //!< counts in [0, 0.1), [0.1, 0.2), ..., [0.9, 1.0]
     double min_angle_deg = 0.0;            //!< smallest interior angle of any triangle
     long boundary_edges = 0;               //!< edges used by exactly one triangle
+    //! Connected components of the boundary edges: the holes and open borders (a border that
+    //! passes a vertex twice counts once).
+    long boundary_loops = 0;
     long nonmanifold_edges = 0;            //!< edges used by three or more triangles
     long nonmanifold_vertices = 0;         //!< vertices whose triangle fan is not one disk/half-disk
     bool oriented = true;                  //!< every manifold edge is used once in each direction
