@@ -25,8 +25,8 @@ class Result:
 
 def report_warnings(report):
     """What a user should know about a result that is not a faithful copy of its source: another
-    topology (parts thinner than the target edge length merge or break), new boundary edges, or a
-    large distance. Sentences, from the core's report (its "warnings"); empty when all is well."""
+    topology (parts thinner than the target edge length merge or break), holes the source does not
+    have, or a large distance. Sentences, from the core's report (its "warnings"); empty when all is well."""
     return list(report.get("warnings") or [])
 
 

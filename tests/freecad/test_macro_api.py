@@ -116,6 +116,16 @@ class MacroApiTest(unittest.TestCase):
                                       vertices=1500)
         self.assertEqual(good.warnings, [])
 
+    def test_an_open_face_keeps_its_borders_without_a_warning(self):
+        """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""
+        face = Part.Face(Part.Wire(Part.makeCircle(20)))
+        face = face.cut(Part.Face(Part.Wire(Part.makeCircle(6, FreeCAD.Vector(5, 0, 0)))))
+        mesh = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(face, 0.1, 0.5), vertices=600)
+        self.assertEqual(mesh.warnings, [])
+        self.assertEqual(mesh.report["input"]["boundary_loops"], 2)
+        self.assertEqual(mesh.report["output"]["boundary_loops"], 2)
+        self.assertGreater(mesh.report["output"]["boundary_edges"], mesh.report["input"]["boundary_edges"])
+
     def test_cancel_from_progress(self):
         with self.assertRaises(LiftRemesh.Cancelled):
             LiftRemesh.remesh_shape(box_with_hole(), vertices=500,

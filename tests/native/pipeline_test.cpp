@@ -98,6 +98,22 @@ TEST(Optimizer, CancelFromTheCallbackThrowsCancelled) {
     EXPECT_THROW(remesh(input, params_with(100), [](const Progress&) { return false; }), Cancelled);
 }
 
+// An open surface keeps its borders (5.2.2 fills only the holes the input does not have); they
+// come out with more, shorter edges, which is no warning.
+TEST(Remesh, AnOpenSurfaceKeepsItsBordersWithoutAWarning) {
+    const Mesh input = test::make_plate_with_hole(100, 60, 10, 5, 8);
+    const MeshQuality in = measure_quality(input);
+    ASSERT_EQ(in.boundary_loops, 2);
+    const RemeshResult r = remesh(input, params_with(800));
+    const MeshQuality& out = r.report.output;
+    EXPECT_EQ(out.boundary_loops, 2);
+    EXPECT_GT(out.boundary_edges, in.boundary_edges);
+    EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
+    EXPECT_EQ(out.nonmanifold_edges, 0);
+    EXPECT_TRUE(out.oriented);
+    EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
+}
+
 TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     const Mesh input = test::make_icosphere(2);
     RemeshParams p = params_with(200);
@@ -165,6 +181,21 @@ TEST(Remesh, ChamferedSharpEdgesGetTheirCreasePointsBack) {
     EXPECT_LE(r.report.hausdorff_relative, 0.005);
     EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
     EXPECT_GE(r.report.output.kappa_min, 0.30);
+}
+
+// A CAD part exported with two cracks (gmsh_object.stl: two pairs of nearly coincident vertices
+// left unwelded, two boundary loops, chi 0) comes out closed, as the part is (chi 2), and the
+// report does not call that another topology.
+TEST(Remesh, CracksOfAPartAreClosedWithoutAWarning) {
+    LIFTREMESH_REQUIRE_SHARED(path, "gmsh_object.stl");
+    const Mesh input = read_mesh(path);
+    const MeshQuality in = measure_quality(input);
+    ASSERT_EQ(in.boundary_loops, 2);
+    const RemeshResult r = remesh(input, params_with(6000));
+    EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
+    EXPECT_EQ(r.report.output.euler_characteristic, in.euler_characteristic + 2);
+    EXPECT_EQ(r.report.output.boundary_loops, 0);
+    EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
 }
 
 // Total length of sharp edges (dihedral angle > 60 degrees) within 2% of the input's.

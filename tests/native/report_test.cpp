@@ -47,7 +47,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
-          "nonmanifold_edges", "nonmanifold_vertices", "oriented", "euler_characteristic", "sharp_edge_length"})
+          "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "oriented", "euler_characteristic", "sharp_edge_length"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 2u) << key;
     EXPECT_NE(json.find("\"kappa_histogram\": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"), std::string::npos) << json;
     EXPECT_NE(json.find("\"kappa_mean\": 0.483123457,"), std::string::npos) << json; // 9 digits
@@ -71,7 +71,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     EXPECT_EQ(json.find(",\n}"), std::string::npos);
 }
 
-TEST(Report, WarnsOfAnotherTopologyNewBoundaryAndALargeDistance) {
+TEST(Report, WarnsOfAnotherTopologyNewHolesAndALargeDistance) {
     RemeshReport r;
     r.input.euler_characteristic = r.output.euler_characteristic = 2;
     r.hausdorff_relative = 0.004;
@@ -80,11 +80,37 @@ TEST(Report, WarnsOfAnotherTopologyNewBoundaryAndALargeDistance) {
 
     r.output.euler_characteristic = -16;
     r.output.boundary_edges = 12;
+    r.output.boundary_loops = 2;
     r.hausdorff_relative = 0.175;
     r.warnings = report_warnings(r);
     ASSERT_EQ(r.warnings.size(), 3u);
     EXPECT_NE(r.warnings[0].find("Euler characteristic -16, source 2"), std::string::npos) << r.warnings[0];
-    EXPECT_NE(r.warnings[1].find("12 boundary edges, the source 0"), std::string::npos) << r.warnings[1];
+    EXPECT_NE(r.warnings[1].find("2 boundary loops, the source 0"), std::string::npos) << r.warnings[1];
     EXPECT_NE(r.warnings[2].find("18 %"), std::string::npos) << r.warnings[2];
     EXPECT_NE(to_json(r).find("\"warnings\": [\"the result's topology differs"), std::string::npos) << to_json(r);
+}
+
+TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {
+    // An open surface: its border, remeshed finer, has more edges but is still one loop.
+    RemeshReport open;
+    open.input.euler_characteristic = open.output.euler_characteristic = 1;
+    open.input.boundary_edges = 3;
+    open.output.boundary_edges = 348;
+    open.input.boundary_loops = open.output.boundary_loops = 1;
+    EXPECT_TRUE(report_warnings(open).empty());
+
+    // A closed part with two cracks (gmsh_object.stl: chi 0, two loops) comes out closed (chi 2).
+    RemeshReport cracked;
+    cracked.input.euler_characteristic = 0;
+    cracked.input.boundary_loops = 2;
+    cracked.output.euler_characteristic = 2;
+    EXPECT_TRUE(report_warnings(cracked).empty());
+    // Closing the cracks does not excuse another change: chi 1 with both loops gone, or chi 2
+    // with one loop left, is another topology.
+    cracked.output.euler_characteristic = 1;
+    ASSERT_EQ(report_warnings(cracked).size(), 1u);
+    EXPECT_NE(report_warnings(cracked)[0].find("Euler characteristic 1, source 0"), std::string::npos);
+    cracked.output.euler_characteristic = 2;
+    cracked.output.boundary_loops = 1;
+    EXPECT_EQ(report_warnings(cracked).size(), 1u);
 }

@@ -13,6 +13,7 @@ ROWS = (
     ("κ mean", "kappa_mean", "{:.3f}"),
     ("min. angle", "min_angle_deg", "{:.1f}°"),
     ("boundary edges", "boundary_edges", "{:d}"),
+    ("boundary loops", "boundary_loops", "{:d}"),
     ("Euler char. χ", "euler_characteristic", "{:d}"),
 )
 
@@ -40,6 +41,9 @@ def report_html(report):
     extra = []
     if report.get("holes_filled"):
         extra.append("%d hole(s) filled" % report["holes_filled"])
+    cracks = (source.get("boundary_loops") or 0) - (output.get("boundary_loops") or 0)
+    if cracks > 0:
+        extra.append("%d crack(s) of the source closed" % cracks)
     seconds = sum((report.get("timings") or {}).values())
     if seconds:
         extra.append("remeshed in %.1f s" % seconds)

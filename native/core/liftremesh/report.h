@@ -40,8 +40,10 @@ constexpr double kFarFromInput = 0.01;
 
 //! The warnings of a finished report: another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
-//! insufficient, in regions where S is thin", Section 2.2), new boundary edges, or a Hausdorff
-//! distance above kFarFromInput.
+//! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
+//! (holes), or a Hausdorff distance above kFarFromInput. The input's cracks that the result
+//! closes (fewer boundary loops) are not another topology: its Euler characteristic may be the
+//! input's plus the number of loops closed.
 std::vector<std::string> report_warnings(const RemeshReport& report);
 
 //! The report as a JSON object (keys documented in the README), indented by two spaces and
