@@ -102,6 +102,21 @@ long EditableMesh::flip_pass(const std::unordered_map<uint64_t, Uses>& uses, con
     return flips;
 }
 
+long EditableMesh::flip_pass_around(const std::vector<char>& around, const std::function<bool(const Quad&)>& accept,
+                                    std::vector<char>& flipped) {
+    std::vector<char> flagged(points.size(), 0);
+    for (size_t t = 0; t < tris.size(); ++t)
+        if (around[t])
+            for (int32_t v : tris[t]) flagged[v] = 1;
+    // Every edge with a flagged end is in `uses`, so an edge c-d of a quad here is too.
+    const auto uses = edge_uses_around(flagged);
+    std::vector<uint64_t> keys;
+    for (const auto& [key, use] : uses)
+        if (use.size() == 2 && (around[use[0].tri] || around[use[1].tri])) keys.push_back(key);
+    std::sort(keys.begin(), keys.end());
+    return flip_pass(uses, keys, {}, accept, flipped);
+}
+
 int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
     const auto m = static_cast<int32_t>(points.size());
     points.push_back(p);

@@ -77,6 +77,10 @@ public:
     long flip_pass(const std::unordered_map<uint64_t, Uses>& uses, const std::vector<uint64_t>& keys,
                    const std::unordered_set<uint64_t>& fixed_edges, const std::function<bool(const Quad&)>& accept,
                    std::vector<char>& flipped);
+    //! One flip_pass over the edges of the triangles flagged in `around` (#tris flags), in edge
+    //! key order, with the uses of every edge near them: `flipped` as in flip_pass.
+    long flip_pass_around(const std::vector<char>& around, const std::function<bool(const Quad&)>& accept,
+                          std::vector<char>& flipped);
     //! Splits the quad's edge at p, a new point m: t1 and t2 become (a, m, c) and (b, m, d),
     //! (m, b, c) and (m, a, d) are appended. Returns m.
     int32_t split_edge(const Quad& q, const Eigen::Vector3d& p);

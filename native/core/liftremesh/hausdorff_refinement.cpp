@@ -66,19 +66,9 @@ public:
     long flip_near_insertions() {
         long flipped = 0;
         for (int pass = 0; pass < 5; ++pass) {
-            std::vector<char> flagged(mesh_.points.size(), 0);
-            for (size_t t = 0; t < mesh_.tris.size(); ++t)
-                if (near_[t])
-                    for (int32_t v : mesh_.tris[t]) flagged[v] = 1;
-            // Every edge with a flagged end is in `uses`, so an edge c-d of a quad here is too.
-            const auto uses = mesh_.edge_uses_around(flagged);
-            std::vector<uint64_t> keys;
-            for (const auto& [key, use] : uses)
-                if (use.size() == 2 && (near_[use[0].tri] || near_[use[1].tri])) keys.push_back(key);
-            std::sort(keys.begin(), keys.end());
             std::vector<char> changed;
-            const long flips = mesh_.flip_pass(
-                uses, keys, {}, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
+            const long flips =
+                mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
             for (size_t t = 0; t < changed.size(); ++t)
                 if (changed[t]) near_[t] = 1;
             flipped += flips;
