@@ -4,9 +4,11 @@
 #include "liftremesh/editable_mesh.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
+#include "liftremesh/quality_flips.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,7 +43,7 @@ struct Witness {
 
 class Refinement {
 public:
-    Refinement(const Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params)
+    Refinement(const Mesh& mesh, const AabbTree& input, const HausdorffRefinementParams& params)
         : mesh_(mesh), input_(input), params_(params) {}
 
     // Inserts the witnesses of the current mesh; returns how many, marking the triangles made.
@@ -200,11 +202,11 @@ private:
             const double worst_before = std::min(mesh_.kappa(mesh_.tris[q.t1]), mesh_.kappa(mesh_.tris[q.t2]));
             return std::min(mesh_.kappa(n1), mesh_.kappa(n2)) >= std::min(params_.kappa_floor, worst_before);
         }
-        return mesh_.flip_improves_quality(q) && after <= std::max(0.5 * params_.tolerance, before);
+        return quality_flip_keeps_surface(mesh_, q, input_, params_.tolerance);
     }
 
     EditableMesh mesh_;
-    AabbTree input_;
+    const AabbTree& input_;
     const HausdorffRefinementParams& params_;
     std::vector<char> near_;      // per triangle: made or changed this round
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
@@ -212,7 +214,8 @@ private:
 
 } // namespace
 
-HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params) {
+HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params,
+                                              const AabbTree* input_tree) {
     check_indices(mesh, "refined mesh");
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -223,7 +226,9 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, con
     HausdorffRefinementStats stats;
     if (mesh.triangles.rows() == 0 || input.triangles.rows() == 0) return stats;
     const std::vector<Eigen::Vector3d> samples = edge_samples(input, params.sample_spacing);
-    Refinement refinement(mesh, input, params);
+    std::optional<AabbTree> own;
+    if (!input_tree) input_tree = &own.emplace(input);
+    Refinement refinement(mesh, *input_tree, params);
     for (int round = 0; round < params.rounds && stats.inserted < params.max_inserted; ++round) {
         const long inserted = refinement.insert(samples, params.max_inserted - stats.inserted);
         if (inserted == 0) break;

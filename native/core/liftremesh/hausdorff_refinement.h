@@ -13,13 +13,14 @@
 //   triangle made is worse than kappa_floor (Eq. 26) or turned over;
 // - edges near the insertions are then flipped where the other diagonal of their quad lies
 //   at most half as far from the input (the edge that cut across the crease), or where a
-//   quality flip of a nearly planar quad raises the worse kappa (EditableMesh) without moving
-//   the surface away from the input;
+//   quality flip of a nearly planar quad raises the worse kappa without moving the surface away
+//   from the input (quality_flips.h);
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
 // the tolerance; where a strongly curved part does not, the points inserted bring it closer too
 // (the bunny at 50000 vertices takes 40).
 #pragma once
 
+#include "liftremesh/aabb_tree.h"
 #include "liftremesh/mesh.h"
 
 #include <limits>
@@ -60,6 +61,8 @@ struct HausdorffRefinementStats {
 //! only; a flip never makes an edge the mesh has). Triangles that are not part of an
 //! oriented manifold quad are split but never flipped. Throws InvalidInput if a parameter is
 //! not positive (kappa_floor and max_inserted may be 0) or an index is out of range.
-HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params);
+//! `input_tree`, if given, is AabbTree(input), which is built here otherwise.
+HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params,
+                                              const AabbTree* input_tree = nullptr);
 
 } // namespace liftremesh

@@ -12,6 +12,7 @@
 #include "liftremesh/normals.h"
 #include "liftremesh/optimizer.h"
 #include "liftremesh/patch_refinement.h"
+#include "liftremesh/quality_flips.h"
 #include "liftremesh/quality.h"
 #include "liftremesh/rdt.h"
 #include "liftremesh/repair.h"
@@ -164,7 +165,10 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
     towards_input.max_distance = spacing * to_unit.scale;
     towards_input.max_inserted = sites_wanted / 100;
-    report.vertices_inserted = refine_towards_input(out, input, towards_input).inserted;
+    const AabbTree input_tree(input);
+    report.vertices_inserted = refine_towards_input(out, input, towards_input, &input_tree).inserted;
+    // Quads split along their longer diagonal, where nearly planar, flipped to the shorter one.
+    report.edges_flipped = flip_for_quality(out, input_tree, towards_input.tolerance);
     clock.end();
 
     clock.begin("quality");

@@ -142,6 +142,7 @@ std::string to_json(const RemeshReport& report) {
                         {"triangles_removed", json_number(report.triangles_removed)},
                         {"edges_collapsed", json_number(report.edges_collapsed)},
                         {"vertices_inserted", json_number(report.vertices_inserted)},
+                        {"edges_flipped", json_number(report.edges_flipped)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
                         {"timings", json_timings(report.timings, 2)},
                         {"warnings", json_array(report.warnings, json_string)}},
