@@ -43,7 +43,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "holes_filled", "triangles_removed", "edges_collapsed",
-          "vertices_inserted", "edges_flipped", "boundary_vertices_snapped", "timings", "warnings"})
+          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",

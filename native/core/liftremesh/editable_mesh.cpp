@@ -134,10 +134,8 @@ Mesh EditableMesh::to_mesh() const {
 }
 
 void EditableMesh::write_to(Mesh& mesh, Eigen::Index first) const {
-    const Eigen::Index old_points = mesh.points.rows();
-    mesh.points.conservativeResize(static_cast<Eigen::Index>(points.size()), 3);
-    for (size_t i = static_cast<size_t>(old_points); i < points.size(); ++i)
-        mesh.points.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+    mesh.points.resize(static_cast<Eigen::Index>(points.size()), 3);
+    for (size_t i = 0; i < points.size(); ++i) mesh.points.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
     mesh.triangles.conservativeResize(first + static_cast<Eigen::Index>(tris.size()), 3);
     for (size_t k = 0; k < tris.size(); ++k)
         for (int j = 0; j < 3; ++j) mesh.triangles(first + static_cast<Eigen::Index>(k), j) = tris[k][j];

@@ -87,8 +87,8 @@ public:
 
     //! The points and the editable triangles as a mesh (all of the mesh when first was 0).
     Mesh to_mesh() const;
-    //! Writes the edits back into the mesh it was made from: new points appended, its triangles
-    //! from `first` on replaced by `tris`.
+    //! Writes the edits back into the mesh it was made from: its points replaced by `points`
+    //! (moved ones moved, new ones appended), its triangles from `first` on by `tris`.
     void write_to(Mesh& mesh, Eigen::Index first = 0) const;
 };
 

@@ -4,7 +4,7 @@
 #include "liftremesh/editable_mesh.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
-#include "liftremesh/quality_flips.h"
+#include "liftremesh/quality_polish.h"
 
 #include <algorithm>
 #include <cmath>

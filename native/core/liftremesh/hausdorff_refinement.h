@@ -14,7 +14,7 @@
 // - edges near the insertions are then flipped where the other diagonal of their quad lies
 //   at most half as far from the input (the edge that cut across the crease), or where a
 //   quality flip of a nearly planar quad raises the worse kappa without moving the surface away
-//   from the input (quality_flips.h);
+//   from the input (quality_polish.h);
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
 // the tolerance; where a strongly curved part does not, the points inserted bring it closer too
 // (the bunny at 50000 vertices takes 40).

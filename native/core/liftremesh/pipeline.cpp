@@ -12,7 +12,7 @@
 #include "liftremesh/normals.h"
 #include "liftremesh/optimizer.h"
 #include "liftremesh/patch_refinement.h"
-#include "liftremesh/quality_flips.h"
+#include "liftremesh/quality_polish.h"
 #include "liftremesh/quality.h"
 #include "liftremesh/rdt.h"
 #include "liftremesh/repair.h"
@@ -167,8 +167,12 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     towards_input.max_inserted = sites_wanted / 100;
     const AabbTree input_tree(input);
     report.vertices_inserted = refine_towards_input(out, input, towards_input, &input_tree).inserted;
-    // Quads split along their longer diagonal, where nearly planar, flipped to the shorter one.
-    report.edges_flipped = flip_for_quality(out, input_tree, towards_input.tolerance);
+    // The worst triangles raised by flips and vertex moves that keep the surface on the input.
+    QualityPolishParams polish;
+    polish.tolerance = towards_input.tolerance;
+    const QualityPolishStats polished = polish_quality(out, input_tree, polish);
+    report.edges_flipped = polished.flipped;
+    report.vertices_moved = polished.moved;
     clock.end();
 
     clock.begin("quality");

@@ -143,6 +143,7 @@ std::string to_json(const RemeshReport& report) {
                         {"edges_collapsed", json_number(report.edges_collapsed)},
                         {"vertices_inserted", json_number(report.vertices_inserted)},
                         {"edges_flipped", json_number(report.edges_flipped)},
+                        {"vertices_moved", json_number(report.vertices_moved)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
                         {"timings", json_timings(report.timings, 2)},
                         {"warnings", json_array(report.warnings, json_string)}},

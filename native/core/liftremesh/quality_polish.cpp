@@ -1,0 +1,164 @@
+#include "liftremesh/quality_polish.h"
+
+#include "liftremesh/compressed_rows.h"
+#include "liftremesh/exceptions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+// Passes of quality flips, the first over the edges of the triangles flagged in `around`, each
+// next one over those of the triangles the last one changed. Returns the flips.
+long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, int passes, std::vector<char> around) {
+    long total = 0;
+    std::vector<char> changed;
+    for (int pass = 0; pass < passes; ++pass) {
+        const long flips = mesh.flip_pass_around(
+            around, [&](const EditableMesh::Quad& q) { return quality_flip_keeps_surface(mesh, q, input, tolerance); },
+            changed);
+        total += flips;
+        if (flips == 0) break;
+        around.swap(changed);
+    }
+    return total;
+}
+
+class Relaxation {
+public:
+    Relaxation(EditableMesh& mesh, const AabbTree& input, const QualityPolishParams& params)
+        : mesh_(mesh), input_(input), params_(params), cos_flat_(std::cos(params.flat_angle_deg * M_PI / 180.0)) {}
+
+    // One pass over the vertices of the bad triangles, in index order; flags the moved ones.
+    long pass(std::vector<char>& moved) {
+        const size_t nv = mesh_.points.size();
+        std::vector<std::pair<int32_t, int32_t>> pairs;
+        for (size_t t = 0; t < mesh_.tris.size(); ++t)
+            for (int32_t v : mesh_.tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
+        fans_ = compress_rows(static_cast<long>(nv), pairs);
+        std::vector<char> on_border(nv, 0); // an end of an edge without exactly two triangles
+        for (const auto& [key, use] : mesh_.edge_uses())
+            if (use.size() != 2) {
+                const EditableMesh::Tri& t = mesh_.tris[use[0].tri];
+                on_border[t[use[0].j]] = on_border[t[(use[0].j + 1) % 3]] = 1;
+            }
+        std::vector<char> candidate(nv, 0);
+        for (const EditableMesh::Tri& t : mesh_.tris)
+            if (mesh_.kappa(t) < params_.relax_below)
+                for (int32_t v : t) candidate[v] = !on_border[v];
+        long count = 0;
+        for (size_t v = 0; v < nv; ++v)
+            if (candidate[v] && relax(static_cast<int32_t>(v))) {
+                moved[v] = 1;
+                ++count;
+            }
+        return count;
+    }
+
+private:
+    // The worst kappa of v's fan, or -1 if a triangle turned by more than 30 degrees from `was`.
+    double fan_worst(int32_t v, const std::vector<Eigen::Vector3d>& was) const {
+        double worst = 2.0;
+        size_t i = 0;
+        for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t, ++i) {
+            const EditableMesh::Tri& tri = mesh_.tris[*t];
+            if (!EditableMesh::turns_little(mesh_.normal(tri), was[i])) return -1.0;
+            worst = std::min(worst, mesh_.kappa(tri));
+        }
+        return worst;
+    }
+
+    bool relax(int32_t v) {
+        const Eigen::Vector3d p = mesh_.points[v];
+        std::vector<Eigen::Vector3d> was;
+        Eigen::Vector3d plane = Eigen::Vector3d::Zero(); // the fan's mean normal
+        for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t) {
+            was.push_back(mesh_.normal(mesh_.tris[*t]));
+            plane += was.back().normalized();
+        }
+        if (was.size() < 3 || !(plane.norm() > 0.0)) return false;
+        plane.normalize();
+        for (const Eigen::Vector3d& n : was)
+            if (!(n.normalized().dot(plane) >= cos_flat_)) return false; // a crease or a strong bend (or NaN)
+        auto in_plane = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return d - plane * d.dot(plane); };
+
+        std::vector<Eigen::Vector3d> targets;
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t) {
+            const EditableMesh::Tri& tri = mesh_.tris[*t];
+            const int j = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+            const Eigen::Vector3d a = mesh_.points[tri[(j + 1) % 3]], b = mesh_.points[tri[(j + 2) % 3]];
+            centroid += a + b; // each neighbour of an inner vertex is in two triangles of its fan
+            if (!(mesh_.kappa(tri) < params_.relax_below)) continue;
+            // The apex of the equilateral triangle on a-b, on v's side, in the fan's plane.
+            const Eigen::Vector3d mid = 0.5 * (a + b), along = (b - a).normalized();
+            const Eigen::Vector3d up = in_plane((p - mid) - along * (p - mid).dot(along));
+            if (!(up.norm() > 0.0)) continue;
+            const Eigen::Vector3d apex = mid + up.normalized() * (b - a).norm() * std::sqrt(3.0) / 2.0;
+            for (double s : {0.25, 0.5, 0.75}) targets.push_back(p + s * (apex - p));
+        }
+        centroid /= static_cast<double>(2 * was.size());
+        targets.insert(targets.begin(), p + in_plane(centroid - p));
+
+        double best = fan_worst(v, was);
+        Eigen::Vector3d chosen = p;
+        for (const Eigen::Vector3d& target : targets) {
+            mesh_.points[v] = input_.closest(target).point;
+            if (const double worst = fan_worst(v, was); worst > best + 1e-9) {
+                best = worst;
+                chosen = mesh_.points[v];
+            }
+        }
+        mesh_.points[v] = chosen;
+        return chosen != p;
+    }
+
+    EditableMesh& mesh_;
+    const AabbTree& input_;
+    const QualityPolishParams& params_;
+    const double cos_flat_;
+    CompressedRows fans_; // vertex -> its triangles
+};
+
+} // namespace
+
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                                double tolerance) {
+    if (!mesh.flip_improves_quality(quad)) return false;
+    const std::vector<Eigen::Vector3d>& x = mesh.points;
+    auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
+    const double before = distance(0.5 * (x[quad.a] + x[quad.b]));
+    const double after = distance(0.5 * (x[quad.c] + x[quad.d]));
+    return after <= std::max(0.5 * tolerance, before);
+}
+
+QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params) {
+    check_indices(mesh, "polished mesh");
+    if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.flip_passes < 0 ||
+        params.relax_passes < 0)
+        throw InvalidInput("polish_quality: the tolerance must be positive and finite, the passes not negative");
+    EditableMesh editable(mesh);
+    QualityPolishStats stats;
+    stats.flipped = flip_passes(editable, input, params.tolerance, params.flip_passes,
+                                std::vector<char>(editable.tris.size(), 1));
+    std::vector<char> moved(editable.points.size(), 0);
+    Relaxation relaxation(editable, input, params);
+    for (int pass = 0; pass < params.relax_passes; ++pass) {
+        const long count = relaxation.pass(moved);
+        stats.moved += count;
+        if (count == 0) break;
+    }
+    if (stats.moved > 0) {
+        std::vector<char> around(editable.tris.size(), 0);
+        for (size_t t = 0; t < editable.tris.size(); ++t)
+            for (int32_t v : editable.tris[t]) around[t] = around[t] || moved[v];
+        stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes, around);
+    }
+    if (stats.flipped > 0 || stats.moved > 0) editable.write_to(mesh);
+    return stats;
+}
+
+} // namespace liftremesh

@@ -1,0 +1,144 @@
+// The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
+// a flip that moves the surface away from the input are not; a vertex pushed out of place on a
+// flat part is moved back, one on a crease is not; a closed surface keeps its topology, its
+// orientation and its worst triangle at least as good.
+#include "liftremesh/exceptions.h"
+#include "liftremesh/quality.h"
+#include "liftremesh/quality_polish.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace liftremesh;
+
+namespace {
+// The quad a = (-1, 0, 0), b = (1, 0, 0), c = (0, 0.4, 0), d as given, split along a-b:
+// triangles (a, b, c) and (b, a, d), both thin (kappa 0.27); the diagonal c-d makes two of kappa
+// 0.93 when flat.
+Mesh kite(const Eigen::Vector3d& d) {
+    return test::make_mesh({{-1, 0, 0}, {1, 0, 0}, {0, 0.4, 0}, d}, {{0, 1, 2}, {1, 0, 3}});
+}
+QualityPolishParams with_tolerance(double tolerance) {
+    QualityPolishParams p;
+    p.tolerance = tolerance;
+    return p;
+}
+long flips(Mesh& m, const AabbTree& input, double tolerance) {
+    return polish_quality(m, input, with_tolerance(tolerance)).flipped;
+}
+bool has_edge(const Mesh& m, int32_t u, int32_t v) {
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (std::minmax(m.triangles(f, j), m.triangles(f, (j + 1) % 3)) == std::minmax(u, v)) return true;
+    return false;
+}
+} // namespace
+
+TEST(QualityPolish, AFlatQuadGetsItsShorterDiagonal) {
+    Mesh m = kite({0, -0.4, 0});
+    const AabbTree input(m);
+    const double before = test::min_kappa(m);
+    EXPECT_EQ(flips(m, input, 0.01), 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    EXPECT_GT(test::min_kappa(m), before + 0.3);
+    EXPECT_EQ(test::facing_inward(m, {0, 0, -1}), 0); // both still face +z
+    EXPECT_EQ(euler_characteristic(m), 1);
+    EXPECT_EQ(flips(m, input, 0.01), 0); // nothing left to improve
+}
+
+TEST(QualityPolish, ASharpEdgeIsNeverFlipped) {
+    Mesh m = kite({0, 0, -0.4}); // the second triangle turned by 90 degrees about a-b
+    const AabbTree input(m);
+    EXPECT_EQ(flips(m, input, 1e3), 0);
+    EXPECT_TRUE(has_edge(m, 0, 1));
+}
+
+TEST(QualityPolish, AFlipThatLeavesTheInputIsNotMade) {
+    // Bent by about 10 degrees about a-b: the diagonal c-d passes 0.035 from the input (the quad).
+    Mesh bent = kite({0, -0.4, 0.07});
+    const AabbTree input(bent);
+    Mesh tight = bent;
+    EXPECT_EQ(flips(tight, input, 0.05), 0); // 0.035 > half the tolerance, and a-b lies on it
+    EXPECT_EQ(flips(bent, input, 0.1), 1);   // 0.035 <= 0.05
+}
+
+TEST(QualityPolish, AVertexPushedOutOfPlaceOnAFlatPartIsMovedBack) {
+    Mesh m = test::make_square(4.0, 4); // unit cells, vertex 12 at (2, 2)
+    m.points.row(12) << 2.7, 2.6, 0.0;
+    const AabbTree input(test::make_square(4.0, 4));
+    QualityPolishParams no_flips = with_tolerance(0.1);
+    no_flips.flip_passes = 0;
+    const double before = test::min_kappa(m);
+    const QualityPolishStats stats = polish_quality(m, input, no_flips);
+    EXPECT_GE(stats.moved, 1);
+    EXPECT_EQ(stats.flipped, 0);
+    EXPECT_GT(test::min_kappa(m), before + 0.1);
+    EXPECT_EQ(m.points.col(2).cwiseAbs().maxCoeff(), 0.0); // all still on the plane
+    EXPECT_EQ(test::facing_inward(m, {2, 2, -1}), 0);
+    // The border stays where it was.
+    const Mesh grid = test::make_square(4.0, 4);
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v)
+        if (grid.points(v, 0) == 0.0 || grid.points(v, 0) == 4.0 || grid.points(v, 1) == 0.0 || grid.points(v, 1) == 4.0)
+            EXPECT_EQ(m.points.row(v), grid.points.row(v)) << v;
+}
+
+TEST(QualityPolish, AVertexOnACreaseIsNotMoved) {
+    Mesh m = test::make_cube(0.5, 4);
+    // A vertex in the middle of the edge x = y = 0.5, pushed along the edge: bad triangles on
+    // both faces, but its fan turns by 90 degrees.
+    Eigen::Index v = 0;
+    while (!(std::abs(m.points(v, 0) - 0.5) < 1e-12 && std::abs(m.points(v, 1) - 0.5) < 1e-12 &&
+             std::abs(m.points(v, 2)) < 1e-12))
+        ++v;
+    m.points(v, 2) = 0.2;
+    const AabbTree input(m);
+    QualityPolishParams no_flips = with_tolerance(0.05);
+    no_flips.flip_passes = 0;
+    const Eigen::RowVector3d at = m.points.row(v);
+    Mesh any_fan = m;
+    polish_quality(m, input, no_flips);
+    EXPECT_EQ(m.points.row(v), at);
+    // What the flat-fan rule prevents: allowed any fan, the vertex moves.
+    no_flips.flat_angle_deg = 180.0;
+    polish_quality(any_fan, input, no_flips);
+    EXPECT_NE(any_fan.points.row(v), at);
+}
+
+TEST(QualityPolish, AClosedSurfaceKeepsItsTopologyAndGetsNoWorse) {
+    Mesh m = test::make_icosphere(3);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v) {
+        m.points.row(v) += Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
+        m.points.row(v).normalize();
+    }
+    const AabbTree input(m);
+    const double before = test::min_kappa(m);
+    const QualityPolishStats stats = polish_quality(m, input, with_tolerance(0.05));
+    EXPECT_GT(stats.flipped, 0);
+    const test::Topology t = test::topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
+    EXPECT_GT(test::min_kappa(m), before);
+    EXPECT_LE(hausdorff_distance(m, test::make_icosphere(3)).hausdorff, 0.05);
+}
+
+TEST(QualityPolish, BadArgumentsAreRejected) {
+    Mesh m = kite({0, -0.4, 0});
+    const AabbTree input(m);
+    EXPECT_THROW(polish_quality(m, input, with_tolerance(0.0)), InvalidInput);
+    EXPECT_THROW(polish_quality(m, input, with_tolerance(std::nan(""))), InvalidInput);
+    QualityPolishParams p = with_tolerance(0.1);
+    p.flip_passes = -1;
+    EXPECT_THROW(polish_quality(m, input, p), InvalidInput);
+    p = with_tolerance(0.1);
+    p.relax_passes = -1;
+    EXPECT_THROW(polish_quality(m, input, p), InvalidInput);
+    m.triangles(0, 0) = 9;
+    EXPECT_THROW(polish_quality(m, input, with_tolerance(0.1)), InvalidInput);
+}
