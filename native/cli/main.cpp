@@ -60,12 +60,14 @@ int main(int argc, char** argv) {
         }
         if (!options.quiet) {
             const MeshQuality& q = result.report.output;
+            const long cracks = cracks_closed(result.report);
+            const std::string closed = cracks > 0 ? "; " + std::to_string(cracks) + " crack(s) of the input closed" : "";
             std::fprintf(stderr,
                          "liftremesh: wrote %s: %ld vertices, %ld triangles, kappa min %.3f mean %.3f, "
-                         "min angle %.1f deg, Hausdorff %.2e of the diagonal, chi %d (input %d)\n",
+                         "min angle %.1f deg, Hausdorff %.2e of the diagonal, chi %d (input %d%s)\n",
                          options.output.c_str(), q.vertices, q.triangles, q.kappa_min, q.kappa_mean, q.min_angle_deg,
                          result.report.hausdorff_relative, q.euler_characteristic,
-                         result.report.input.euler_characteristic);
+                         result.report.input.euler_characteristic, closed.c_str());
         }
         for (const std::string& warning : result.report.warnings) // shown even with --quiet
             std::fprintf(stderr, "liftremesh: warning: %s\n", warning.c_str());

@@ -104,6 +104,8 @@ TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {
     cracked.input.euler_characteristic = 0;
     cracked.input.boundary_loops = 2;
     cracked.output.euler_characteristic = 2;
+    EXPECT_EQ(cracks_closed(cracked), 2);
+    EXPECT_EQ(cracks_closed(open), 0);
     EXPECT_TRUE(report_warnings(cracked).empty());
     // Closing the cracks does not excuse another change: chi 1 with both loops gone, or chi 2
     // with one loop left, is another topology.

@@ -103,14 +103,17 @@ std::string json_timings(const std::vector<StageTime>& timings, int indent) {
 
 } // namespace
 
+long cracks_closed(const RemeshReport& report) {
+    return std::max(0L, report.input.boundary_loops - report.output.boundary_loops);
+}
+
 std::vector<std::string> report_warnings(const RemeshReport& report) {
     std::vector<std::string> found;
     const MeshQuality &in = report.input, &out = report.output;
     // Each crack of the source that the result closes (a boundary loop narrower than the cells,
     // which the diagram spans) raises the Euler characteristic by one, as a filled hole does:
     // that is the repair asked for, not another topology.
-    const long closed = std::max(0L, in.boundary_loops - out.boundary_loops);
-    if (out.euler_characteristic != in.euler_characteristic + closed)
+    if (out.euler_characteristic != in.euler_characteristic + cracks_closed(report))
         found.push_back("the result's topology differs from the source's (Euler characteristic " +
                         std::to_string(out.euler_characteristic) + ", source " + std::to_string(in.euler_characteristic) +
                         "): parts thinner than the target edge length merged or broke; ask for more vertices or a "

@@ -40,6 +40,10 @@ struct RemeshReport {
 //! Relative Hausdorff distance above which the result is reported as far from its input (1%).
 constexpr double kFarFromInput = 0.01;
 
+//! The input's boundary loops the result does not have: cracks (unwelded seams, slits narrower
+//! than the cells) that the diagram spans and the result closes. 0 if it has as many or more.
+long cracks_closed(const RemeshReport& report);
+
 //! The warnings of a finished report: another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
