@@ -202,7 +202,7 @@ private:
             const double worst_before = std::min(mesh_.kappa(mesh_.tris[q.t1]), mesh_.kappa(mesh_.tris[q.t2]));
             return std::min(mesh_.kappa(n1), mesh_.kappa(n2)) >= std::min(params_.kappa_floor, worst_before);
         }
-        return quality_flip_keeps_surface(mesh_, q, input_, params_.tolerance);
+        return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
     }
 
     EditableMesh mesh_;

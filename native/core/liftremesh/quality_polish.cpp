@@ -29,26 +29,28 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
 
 class Relaxation {
 public:
+    // The fans and the border, made once: moving vertices does not change the triangles.
     Relaxation(EditableMesh& mesh, const AabbTree& input, const QualityPolishParams& params)
-        : mesh_(mesh), input_(input), params_(params), cos_flat_(std::cos(params.flat_angle_deg * M_PI / 180.0)) {}
+        : mesh_(mesh), input_(input), params_(params), cos_flat_(std::cos(params.flat_angle_deg * M_PI / 180.0)),
+          on_border_(mesh.points.size(), 0) {
+        std::vector<std::pair<int32_t, int32_t>> pairs;
+        for (size_t t = 0; t < mesh_.tris.size(); ++t)
+            for (int32_t v : mesh_.tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
+        fans_ = compress_rows(static_cast<long>(mesh_.points.size()), pairs);
+        for (const auto& [key, use] : mesh_.edge_uses())
+            if (use.size() != 2) {
+                const EditableMesh::Tri& t = mesh_.tris[use[0].tri];
+                on_border_[t[use[0].j]] = on_border_[t[(use[0].j + 1) % 3]] = 1;
+            }
+    }
 
     // One pass over the vertices of the bad triangles, in index order; flags the moved ones.
     long pass(std::vector<char>& moved) {
         const size_t nv = mesh_.points.size();
-        std::vector<std::pair<int32_t, int32_t>> pairs;
-        for (size_t t = 0; t < mesh_.tris.size(); ++t)
-            for (int32_t v : mesh_.tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
-        fans_ = compress_rows(static_cast<long>(nv), pairs);
-        std::vector<char> on_border(nv, 0); // an end of an edge without exactly two triangles
-        for (const auto& [key, use] : mesh_.edge_uses())
-            if (use.size() != 2) {
-                const EditableMesh::Tri& t = mesh_.tris[use[0].tri];
-                on_border[t[use[0].j]] = on_border[t[(use[0].j + 1) % 3]] = 1;
-            }
         std::vector<char> candidate(nv, 0);
         for (const EditableMesh::Tri& t : mesh_.tris)
             if (mesh_.kappa(t) < params_.relax_below)
-                for (int32_t v : t) candidate[v] = !on_border[v];
+                for (int32_t v : t) candidate[v] = !on_border_[v];
         long count = 0;
         for (size_t v = 0; v < nv; ++v)
             if (candidate[v] && relax(static_cast<int32_t>(v))) {
@@ -120,7 +122,8 @@ private:
     const AabbTree& input_;
     const QualityPolishParams& params_;
     const double cos_flat_;
-    CompressedRows fans_; // vertex -> its triangles
+    std::vector<char> on_border_; // an end of an edge without exactly two triangles
+    CompressedRows fans_;         // vertex -> its triangles
 };
 
 } // namespace
@@ -130,9 +133,13 @@ bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Qu
     if (!mesh.flip_improves_quality(quad)) return false;
     const std::vector<Eigen::Vector3d>& x = mesh.points;
     auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
-    const double before = distance(0.5 * (x[quad.a] + x[quad.b]));
-    const double after = distance(0.5 * (x[quad.c] + x[quad.d]));
-    return after <= std::max(0.5 * tolerance, before);
+    return quality_flip_keeps_surface(mesh, quad, distance(0.5 * (x[quad.a] + x[quad.b])),
+                                      distance(0.5 * (x[quad.c] + x[quad.d])), tolerance);
+}
+
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                                double tolerance) {
+    return mesh.flip_improves_quality(quad) && after <= std::max(0.5 * tolerance, before);
 }
 
 QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params) {

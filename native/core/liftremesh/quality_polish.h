@@ -48,6 +48,10 @@ struct QualityPolishStats {
 //! (the first rule above); `input` is the input's tree, `tolerance` > 0.
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                                 double tolerance);
+//! The same rule for a caller that measured the distances from the input of the midpoints of
+//! the quad's edge (`before`) and of the other diagonal (`after`) already.
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                                double tolerance);
 
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
