@@ -4,7 +4,8 @@
     /usr/bin/python3 scripts/report_summary.py REPORT.json [--check]
 
 With --check, exits 1 when the output is not an oriented 2-manifold with the input's Euler
-characteristic (plus one per crack of the input it closes) and, for a closed input, closed.
+characteristic (plus one per crack of the input it closes and per fan of a non-manifold vertex of
+the input it splits) and, for a closed input, closed.
 Exits 2 when the report cannot be read or lacks a key.
 """
 
@@ -56,6 +57,16 @@ def cracks_closed(report):
     return max(0, report["input"].get("boundary_loops", 0) - report["output"].get("boundary_loops", 0))
 
 
+def vertex_fans_split(report):
+    """Fans of the input's non-manifold vertices that the output gives a vertex of their own."""
+    return max(0, report["input"].get("extra_vertex_fans", 0) - report["output"].get("extra_vertex_fans", 0))
+
+
+def expected_chi(report):
+    """The input's Euler characteristic plus one per crack closed and per vertex fan split."""
+    return report["input"]["euler_characteristic"] + cracks_closed(report) + vertex_fans_split(report)
+
+
 def topology_problems(report):
     inp, out = report["input"], report["output"]
     problems = []
@@ -65,8 +76,9 @@ def topology_problems(report):
         problems.append("%d non-manifold edges" % out["nonmanifold_edges"])
     if out.get("oriented") is False:
         problems.append("inconsistently oriented triangles")
-    # Cracks of the input that the output closes raise chi by one each (as the core's warnings).
-    if out["euler_characteristic"] != inp["euler_characteristic"] + cracks_closed(report):
+    # Cracks of the input that the output closes, and fans of its non-manifold vertices that the
+    # output splits, raise chi by one each (as the core's warnings).
+    if out["euler_characteristic"] != expected_chi(report):
         problems.append("Euler characteristic %d, input %d"
                         % (out["euler_characteristic"], inp["euler_characteristic"]))
     return problems
@@ -89,10 +101,11 @@ def main(argv):
     if problems:
         print("check : NOT the input's topology: " + "; ".join(problems))
         return 1 if "--check" in argv else 0
-    closed = cracks_closed(report)
+    closed, split = cracks_closed(report), vertex_fans_split(report)
     print("check : %s 2-manifold with the input's topology"
           % ("closed" if report["output"]["boundary_edges"] == 0 else "open")
-          + (", %d crack(s) of the input closed" % closed if closed else ""))
+          + (", %d crack(s) of the input closed" % closed if closed else "")
+          + (", %d fan(s) of its non-manifold vertices split" % split if split else ""))
     return 0
 
 

@@ -60,14 +60,17 @@ int main(int argc, char** argv) {
         }
         if (!options.quiet) {
             const MeshQuality& q = result.report.output;
-            const long cracks = cracks_closed(result.report);
-            const std::string closed = cracks > 0 ? "; " + std::to_string(cracks) + " crack(s) of the input closed" : "";
+            std::string repaired; // why chi differs from the input's, when it is the repair asked for
+            if (const long cracks = cracks_closed(result.report); cracks > 0)
+                repaired += "; " + std::to_string(cracks) + " crack(s) of the input closed";
+            if (const long fans = vertex_fans_split(result.report); fans > 0)
+                repaired += "; " + std::to_string(fans) + " fan(s) of its non-manifold vertices split";
             std::fprintf(stderr,
                          "liftremesh: wrote %s: %ld vertices, %ld triangles, kappa min %.3f mean %.3f, "
                          "min angle %.1f deg, Hausdorff %.2e of the diagonal, chi %d (input %d%s)\n",
                          options.output.c_str(), q.vertices, q.triangles, q.kappa_min, q.kappa_mean, q.min_angle_deg,
                          result.report.hausdorff_relative, q.euler_characteristic,
-                         result.report.input.euler_characteristic, closed.c_str());
+                         result.report.input.euler_characteristic, repaired.c_str());
         }
         for (const std::string& warning : result.report.warnings) // shown even with --quiet
             std::fprintf(stderr, "liftremesh: warning: %s\n", warning.c_str());

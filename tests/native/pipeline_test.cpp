@@ -5,6 +5,7 @@
 #include "liftremesh/optimizer.h"
 #include "liftremesh/pipeline.h"
 #include "liftremesh/quality.h"
+#include "liftremesh/report.h"
 #include "liftremesh/sampling.h"
 #include "helpers.h"
 #include "topology_helpers.h"
@@ -167,6 +168,19 @@ TEST_P(SharedMesh, ClosedOrientedManifoldWithGoodTrianglesCloseToTheInput) {
 INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMesh,
                          ::testing::Values("gmsh_t13_data.stl", "netgen_hinge.stl", "gmsh_lever.stl", "pmp_fandisk.off"),
                          mesh_name);
+
+// igl_beetle.off, once welded, has two vertices where parts touch (two fans each, chi -11); the
+// result splits them (chi -9) and the report says so instead of warning.
+TEST(Remesh, NonManifoldVerticesOfTheInputAreSplitWithoutAWarning) {
+    LIFTREMESH_REQUIRE_SHARED(path, "igl_beetle.off");
+    const Mesh input = read_mesh(path);
+    const RemeshResult r = remesh(input, params_with(6000));
+    ASSERT_EQ(r.report.input.extra_vertex_fans, 2);
+    EXPECT_EQ(r.report.output.nonmanifold_vertices, 0);
+    EXPECT_EQ(r.report.output.euler_characteristic,
+              r.report.input.euler_characteristic + cracks_closed(r.report) + 2);
+    EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
+}
 
 // Edge crunching (Section 6.2.2): with seed 10 the optimisation leaves sharp edges of t13 cut
 // off by chamfers up to 0.83% of the diagonal deep (measured before hausdorff_refinement.h); the

@@ -150,21 +150,21 @@ TEST(Quality, NonManifoldEdgesAndVertices) {
         test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
     const MeshQuality qb = measure_quality(bowtie);
     EXPECT_EQ(qb.nonmanifold_vertices, 1);
+    EXPECT_EQ(qb.extra_vertex_fans, 1);
     EXPECT_EQ(qb.nonmanifold_edges, 0);
+    // A third triangle at the same vertex: one vertex, two fans beyond the first.
+    const Mesh three = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}, {0, 1, 1}, {0, 2, 1}},
+                                       {{0, 1, 2}, {0, 3, 4}, {0, 5, 6}});
+    EXPECT_EQ(measure_quality(three).nonmanifold_vertices, 1);
+    EXPECT_EQ(measure_quality(three).extra_vertex_fans, 2);
+    EXPECT_EQ(qf.extra_vertex_fans, 0);
 
     // Two closed spheres glued at one vertex: only that vertex is non-manifold.
-    Mesh a = test::make_icosphere(1), b = test::make_icosphere(1);
-    // b = a reflected through a's vertex 0: the two touch at that vertex only.
-    b.points = (-a.points).rowwise() + 2.0 * a.points.row(0);
-    Mesh glued;
-    glued.points.resize(a.points.rows() + b.points.rows(), 3);
-    glued.points << a.points, b.points;
-    glued.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
-    glued.triangles << a.triangles, (b.triangles.array() + static_cast<int32_t>(a.points.rows())).matrix();
-    weld_exact(glued);
+    const Mesh glued = test::make_touching_spheres(1);
     const MeshQuality qg = measure_quality(glued);
     EXPECT_EQ(qg.vertices, 2 * 42 - 1);
     EXPECT_EQ(qg.nonmanifold_vertices, 1);
+    EXPECT_EQ(qg.extra_vertex_fans, 1);
     EXPECT_EQ(qg.nonmanifold_edges, 0);
     EXPECT_EQ(qg.boundary_edges, 0);
     EXPECT_EQ(qg.euler_characteristic, 3);

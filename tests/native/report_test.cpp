@@ -47,7 +47,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
-          "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "oriented", "euler_characteristic", "sharp_edge_length"})
+          "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "extra_vertex_fans", "oriented", "euler_characteristic", "sharp_edge_length"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 2u) << key;
     EXPECT_NE(json.find("\"kappa_histogram\": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"), std::string::npos) << json;
     EXPECT_NE(json.find("\"kappa_mean\": 0.483123457,"), std::string::npos) << json; // 9 digits
@@ -115,4 +115,26 @@ TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {
     cracked.output.euler_characteristic = 2;
     cracked.output.boundary_loops = 1;
     EXPECT_EQ(report_warnings(cracked).size(), 1u);
+}
+
+TEST(Report, PartsTouchingAtAVertexComingOutApartIsNoWarning) {
+    // Two spheres touching at a vertex (chi 3, one vertex with two fans) come out as two spheres
+    // (chi 4): the fan split is the repair, as in vertex_fans_split().
+    RemeshReport touching;
+    touching.input.euler_characteristic = 3;
+    touching.input.nonmanifold_vertices = 1;
+    touching.input.extra_vertex_fans = 1;
+    touching.output.euler_characteristic = 4;
+    EXPECT_EQ(vertex_fans_split(touching), 1);
+    EXPECT_EQ(expected_euler_characteristic(touching), 4);
+    EXPECT_TRUE(report_warnings(touching).empty());
+    // Merged into one sphere (chi 2), or the pinch kept and a handle made (chi 1): warned.
+    for (int chi : {2, 3}) {
+        touching.output.euler_characteristic = chi;
+        ASSERT_EQ(report_warnings(touching).size(), 1u) << chi;
+        EXPECT_NE(report_warnings(touching)[0].find("topology differs"), std::string::npos);
+    }
+    touching.output.euler_characteristic = 3;
+    touching.output.extra_vertex_fans = 1; // the pinch kept: the same topology
+    EXPECT_TRUE(report_warnings(touching).empty());
 }

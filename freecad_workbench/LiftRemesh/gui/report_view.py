@@ -44,6 +44,9 @@ def report_html(report):
     cracks = (source.get("boundary_loops") or 0) - (output.get("boundary_loops") or 0)
     if cracks > 0:
         extra.append("%d crack(s) of the source closed" % cracks)
+    fans = (source.get("extra_vertex_fans") or 0) - (output.get("extra_vertex_fans") or 0)
+    if fans > 0:
+        extra.append("%d fan(s) of the source's non-manifold vertices split" % fans)
     seconds = sum((report.get("timings") or {}).values())
     if seconds:
         extra.append("remeshed in %.1f s" % seconds)

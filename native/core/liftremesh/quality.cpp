@@ -106,9 +106,10 @@ void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
 
 // ---- per vertex ---------------------------------------------------------------------------------
 
-//! Number of vertices whose incident triangles fall into two or more fans, groups not connected
-//! through edges at the vertex (e.g. two cones touching at their apex): vertex_fans (mesh.h).
-long count_nonmanifold_vertices(const Mesh& mesh) {
+//! The vertices whose incident triangles fall into two or more fans, groups not connected
+//! through edges at the vertex (e.g. two cones touching at their apex: vertex_fans, mesh.h),
+//! into q.nonmanifold_vertices, and their fans beyond the first into q.extra_vertex_fans.
+void measure_vertices(const Mesh& mesh, MeshQuality& q) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
     // Vertex -> incident triangles.
     std::vector<std::pair<int32_t, int32_t>> pairs;
@@ -117,16 +118,18 @@ long count_nonmanifold_vertices(const Mesh& mesh) {
         for (int j = 0; j < 3; ++j) pairs.emplace_back(mesh.triangles(f, j), static_cast<int32_t>(f));
     const CompressedRows incident = compress_rows(nv, pairs);
 
-    long count = 0;
     std::vector<std::array<int32_t, 3>> around;
     std::vector<int> fan;
     for (Eigen::Index v = 0; v < nv; ++v) {
         around.clear();
         for (const int32_t* f = incident.begin(v); f != incident.end(v); ++f)
             around.push_back({mesh.triangles(*f, 0), mesh.triangles(*f, 1), mesh.triangles(*f, 2)});
-        if (vertex_fans(static_cast<int32_t>(v), around, fan) > 1) ++count;
+        const int fans = vertex_fans(static_cast<int32_t>(v), around, fan);
+        if (fans > 1) {
+            ++q.nonmanifold_vertices;
+            q.extra_vertex_fans += fans - 1;
+        }
     }
-    return count;
 }
 
 // ---- sampling and distances -------------------------------------------------------------------
@@ -225,7 +228,7 @@ MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
     q.vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
     measure_triangles(mesh, q);
     measure_edges(mesh, sharp_angle_deg, q);
-    q.nonmanifold_vertices = count_nonmanifold_vertices(mesh);
+    measure_vertices(mesh, q);
     q.euler_characteristic = euler_characteristic(mesh);
     return q;
 }

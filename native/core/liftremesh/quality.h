@@ -22,6 +22,10 @@ struct MeshQuality {
     long boundary_loops = 0;
     long nonmanifold_edges = 0;            //!< edges used by three or more triangles
     long nonmanifold_vertices = 0;         //!< vertices whose triangle fan is not one disk/half-disk
+    //! The fans beyond the first, summed over the non-manifold vertices (two cones touching at
+    //! their apex: 1): how many more vertices a manifold copy of the mesh has, a vertex per fan,
+    //! and so how much higher its Euler characteristic is.
+    long extra_vertex_fans = 0;
     bool oriented = true;                  //!< every manifold edge is used once in each direction
     int euler_characteristic = 0;          //!< V - E + F
     double sharp_edge_length = 0.0;        //!< total length of edges with dihedral angle > sharp_angle

@@ -78,6 +78,7 @@ std::string json_quality(const MeshQuality& q, int indent) {
                         {"boundary_loops", json_number(q.boundary_loops)},
                         {"nonmanifold_edges", json_number(q.nonmanifold_edges)},
                         {"nonmanifold_vertices", json_number(q.nonmanifold_vertices)},
+                        {"extra_vertex_fans", json_number(q.extra_vertex_fans)},
                         {"oriented", q.oriented ? "true" : "false"},
                         {"euler_characteristic", json_number(static_cast<long>(q.euler_characteristic))},
                         {"sharp_edge_length", json_number(q.sharp_edge_length)}},
@@ -107,13 +108,22 @@ long cracks_closed(const RemeshReport& report) {
     return std::max(0L, report.input.boundary_loops - report.output.boundary_loops);
 }
 
+long vertex_fans_split(const RemeshReport& report) {
+    return std::max(0L, report.input.extra_vertex_fans - report.output.extra_vertex_fans);
+}
+
+int expected_euler_characteristic(const RemeshReport& report) {
+    return report.input.euler_characteristic + static_cast<int>(cracks_closed(report) + vertex_fans_split(report));
+}
+
 std::vector<std::string> report_warnings(const RemeshReport& report) {
     std::vector<std::string> found;
     const MeshQuality &in = report.input, &out = report.output;
     // Each crack of the source that the result closes (a boundary loop narrower than the cells,
-    // which the diagram spans) raises the Euler characteristic by one, as a filled hole does:
-    // that is the repair asked for, not another topology.
-    if (out.euler_characteristic != in.euler_characteristic + cracks_closed(report))
+    // which the diagram spans) raises the Euler characteristic by one, as a filled hole does, and
+    // so does each fan of a non-manifold vertex that the (manifold) result gives a vertex of its
+    // own: that is the repair asked for, not another topology.
+    if (out.euler_characteristic != expected_euler_characteristic(report))
         found.push_back("the result's topology differs from the source's (Euler characteristic " +
                         std::to_string(out.euler_characteristic) + ", source " + std::to_string(in.euler_characteristic) +
                         "): parts thinner than the target edge length merged or broke; ask for more vertices or a "

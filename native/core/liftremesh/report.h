@@ -44,12 +44,20 @@ constexpr double kFarFromInput = 0.01;
 //! than the cells) that the diagram spans and the result closes. 0 if it has as many or more.
 long cracks_closed(const RemeshReport& report);
 
+//! The fans of the input's non-manifold vertices that the result does not have (extra_vertex_fans
+//! in minus out): parts touching at a point, a vertex of each fan in the result. 0 if none.
+long vertex_fans_split(const RemeshReport& report);
+
+//! The Euler characteristic the result has when it keeps the input's topology: the input's, plus
+//! one per crack closed and one per vertex fan split (each is the repair asked for).
+int expected_euler_characteristic(const RemeshReport& report);
+
 //! The warnings of a finished report: another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
 //! (holes), or a Hausdorff distance above kFarFromInput. The input's cracks that the result
-//! closes (fewer boundary loops) are not another topology: its Euler characteristic may be the
-//! input's plus the number of loops closed.
+//! closes (fewer boundary loops) and the non-manifold vertices it splits are not another
+//! topology: its Euler characteristic may be expected_euler_characteristic().
 std::vector<std::string> report_warnings(const RemeshReport& report);
 
 //! The report as a JSON object (keys documented in the README), indented by two spaces and
