@@ -169,6 +169,24 @@ INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMesh,
                          ::testing::Values("gmsh_t13_data.stl", "netgen_hinge.stl", "gmsh_lever.stl", "pmp_fandisk.off"),
                          mesh_name);
 
+// Two spheres touching at a point, as parts of an assembly exported together: near the point
+// the cells reach both spheres, in pieces that do not touch, and with one vertex per site the
+// result bridged them (one surface, chi 2, 0 or -4 at 1000-3000 vertices, measured before
+// rdt.h gave each piece a vertex). Now they come out apart, two spheres, and the report calls
+// the pinch's split the repair it is, not another topology.
+TEST(Remesh, PartsTouchingAtAPointComeOutApart) {
+    const Mesh input = test::make_touching_spheres(3);
+    const RemeshResult r = remesh(input, params_with(2000));
+    const test::Topology t = test::topology(r.mesh);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 4);
+    EXPECT_EQ(r.report.input.extra_vertex_fans, 1);
+    EXPECT_GT(r.report.sites_split, 0);
+    EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
+    EXPECT_LE(r.report.hausdorff_relative, 0.005);
+    EXPECT_GE(r.report.output.kappa_mean, 0.95);
+}
+
 // igl_beetle.off, once welded, has two vertices where parts touch (two fans each, chi -11); the
 // result splits them (chi -9) and the report says so instead of warning.
 TEST(Remesh, NonManifoldVerticesOfTheInputAreSplitWithoutAWarning) {

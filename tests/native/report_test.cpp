@@ -42,7 +42,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     const std::string json = to_json(sample_report());
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
-          "evaluations", "energy_initial", "energy_final", "holes_filled", "triangles_removed", "edges_collapsed",
+          "evaluations", "energy_initial", "energy_final", "sites_split", "holes_filled", "triangles_removed", "edges_collapsed",
           "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :

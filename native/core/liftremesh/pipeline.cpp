@@ -135,8 +135,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("rdt");
     Mesh& out = result.mesh;
-    out.triangles = restricted_delaunay(surface, sites, params.threads); // Eq. 4
-    out.points = sites.leftCols(3);                                      // Algorithm 3, line 11
+    RestrictedDelaunay rdt = restricted_delaunay(surface, sites, params.threads); // Eq. 4, Algorithm 3, line 11
+    out = std::move(rdt.mesh);
+    report.sites_split = rdt.split_sites;
     if (out.triangles.rows() == 0)
         throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
     clock.end();

@@ -24,6 +24,7 @@ struct RemeshReport {
     int evaluations = 0;                 //!< objective evaluations (diagrams computed), line searches included
     double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)
     double energy_final = 0.0;           //!< objective at the last iterate (its phase's sigma)
+    long sites_split = 0;                //!< sites whose restricted cell came in pieces, a vertex each (rdt.h)
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
