@@ -125,7 +125,11 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     }
     // Per site, its largest part (kept at row k) and how many parts are large enough to count.
     std::vector<int> largest(static_cast<size_t>(ns), -1), counted(static_cast<size_t>(ns), 0);
-    auto large = [&](int part) { return part_area[part] >= params.min_piece * cell_area[part_site[part]]; };
+    // (Of positive area: a cell of degenerate polygons only is never split, and a split piece's
+    // centroid is always defined.)
+    auto large = [&](int part) {
+        return part_area[part] > 0.0 && part_area[part] >= params.min_piece * cell_area[part_site[part]];
+    };
     for (int part = 0; part < count; ++part) {
         const int32_t k = part_site[part];
         if (largest[k] < 0 || part_area[part] > part_area[largest[k]]) largest[k] = part;
