@@ -38,17 +38,18 @@ Piece measure_piece(const LiftedSurface& surface, const RvdPolygon& poly) {
     piece.triangle = poly.triangle;
     const double* c = poly.planar;
     double twice = 0.0;
-    Eigen::Vector2d moment = Eigen::Vector2d::Zero(), mean = Eigen::Vector2d::Zero();
+    Eigen::Vector2d moment = Eigen::Vector2d::Zero();
     for (int i = 0; i < poly.size; ++i) {
         const int j = i + 1 == poly.size ? 0 : i + 1;
         const double cross = c[2 * i] * c[2 * j + 1] - c[2 * j] * c[2 * i + 1];
         twice += cross;
         moment += cross * Eigen::Vector2d(c[2 * i] + c[2 * j], c[2 * i + 1] + c[2 * j + 1]);
-        mean += Eigen::Vector2d(c[2 * i], c[2 * i + 1]) / poly.size;
         if (poly.edges[i] < 0) piece.edges |= static_cast<std::uint8_t>(1u << (-1 - poly.edges[i]));
     }
     piece.area = 0.5 * std::abs(twice);
-    const Eigen::Vector2d ab = std::abs(twice) > 0.0 ? Eigen::Vector2d(moment / (3.0 * twice)) : mean;
+    // A piece of zero area has no centroid; its first vertex stands in (finite, and weighted by
+    // the zero area wherever pieces are summed).
+    const Eigen::Vector2d ab = twice != 0.0 ? Eigen::Vector2d(moment / (3.0 * twice)) : Eigen::Vector2d(c[0], c[1]);
     const long p = poly.triangle;
     piece.centroid = surface.points.row(surface.triangles(p, 0)).head<3>().transpose() +
                      ab[0] * surface.u1.row(p).head<3>().transpose() + ab[1] * surface.u2.row(p).head<3>().transpose();
@@ -86,15 +87,11 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
 
     // Pieces of one cell joined across an input edge they both reach, or along the input's
     // boundary (key kBoundary): (edge key, site, piece), sorted, then runs linked.
-    std::vector<std::uint64_t> edge_uses;
     const Triangles& tri = surface.triangles;
-    for (Eigen::Index f = 0; f < tri.rows(); ++f)
-        for (int j = 0; j < 3; ++j) edge_uses.push_back(edge_key(tri(f, j), tri(f, (j + 1) % 3)));
-    std::sort(edge_uses.begin(), edge_uses.end());
-    auto is_boundary = [&](std::uint64_t key) {
-        const auto range = std::equal_range(edge_uses.begin(), edge_uses.end(), key);
-        return range.second - range.first == 1;
-    };
+    std::vector<std::uint64_t> boundary; // keys of the edges with one use, sorted as edge_counts() is
+    for (const EdgeCount& e : edge_counts(tri))
+        if (e.count == 1) boundary.push_back(edge_key(e.a, e.b));
+    auto is_boundary = [&](std::uint64_t key) { return std::binary_search(boundary.begin(), boundary.end(), key); };
     constexpr std::uint64_t kBoundary = std::numeric_limits<std::uint64_t>::max();
     std::vector<std::tuple<std::uint64_t, int32_t, int>> reach;
     for (int i = 0; i < np; ++i)
