@@ -50,14 +50,17 @@ TEST_P(KnnDimensions, MatchBruteForceWithOrWithoutAHint) {
         ASSERT_EQ(tree.knn(p.row(q).data(), k, idx.data(), d2.data()), k);
         EXPECT_EQ(idx, expected);
         EXPECT_TRUE(std::is_sorted(d2.begin(), d2.end()));
-        // Hints: the answer itself reversed, a part of it, far points only, and a mix with
-        // repeats; none may change the answer or duplicate a point.
+        // Hints: the answer itself reversed, a part of it, far points only, a mix with repeats,
+        // and k entries naming two points; none may change the answer or duplicate a point.
         std::vector<int32_t> reversed(expected.rbegin(), expected.rend());
         std::vector<int32_t> half(expected.begin(), expected.begin() + k / 2);
         std::vector<int32_t> far = brute_knn(p, q, 300);
         far.erase(far.begin(), far.begin() + 200);
         std::vector<int32_t> mixed = {expected[3], any(rng), expected[3], any(rng), expected[0]};
-        for (const std::vector<int32_t>* hint : {&reversed, &half, &far, &mixed}) {
+        // k entries, but not k points: their farthest is no bound on the k-th nearest.
+        std::vector<int32_t> repeated(k, expected[1]);
+        repeated[0] = expected[0];
+        for (const std::vector<int32_t>* hint : {&reversed, &half, &far, &mixed, &repeated}) {
             std::vector<int32_t> hinted(k);
             std::vector<double> hinted_d2(k);
             ASSERT_EQ(tree.knn(p.row(q).data(), k, hinted.data(), hinted_d2.data(), hint->data(),

@@ -4,6 +4,10 @@
 
 #include <nanoflann.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace liftremesh {
 
 namespace {
@@ -17,28 +21,6 @@ struct MatrixAdaptor {
     double kdtree_get_pt(size_t i, size_t d) const { return (*m)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(d)); }
     template <class Box>
     bool kdtree_get_bbox(Box&) const { return false; }
-};
-
-// nanoflann's k-nearest result set, which may start filled (from a hint): a point the search
-// meets again is not added twice. A point dropped from the set cannot come back (its distance
-// is not below the k-th any more), so "added before" is "in the set".
-class HintedKnnResult {
-public:
-    HintedKnnResult(int32_t* idx, double* d2, int capacity) : idx_(idx), set_(static_cast<size_t>(capacity)) {
-        set_.init(idx, d2);
-    }
-    size_t size() const { return set_.size(); }
-    bool full() const { return set_.full(); }
-    double worstDist() const { return set_.worstDist(); }
-    bool addPoint(double dist, int32_t index) {
-        for (size_t i = 0; i < set_.size(); ++i)
-            if (idx_[i] == index) return true; // go on searching
-        return set_.addPoint(dist, index);
-    }
-
-private:
-    const int32_t* idx_;
-    nanoflann::KNNResultSet<double, int32_t> set_;
 };
 
 struct TreeBase {
@@ -68,16 +50,30 @@ struct Tree final : TreeBase {
     }
     int knn_hinted(const double* q, int k, int32_t* idx, double* d2, const int32_t* hint,
                    int hint_count) const override {
-        HintedKnnResult result(idx, d2, k);
-        for (int h = 0; h < hint_count; ++h) {
-            double dist = 0.0; // summed as nanoflann's L2_Simple_Adaptor does: a point met again compares equal
-            for (int c = 0; c < D; ++c) {
-                const double diff = q[c] - adaptor.kdtree_get_pt(static_cast<size_t>(hint[h]), static_cast<size_t>(c));
-                dist += diff * diff;
+        // The hint's points bound the search: k of them lie within the farthest one's distance,
+        // so no point beyond it is among the k nearest, and the tree prunes with that bound
+        // from its first step instead of with infinity until k points are met.
+        double bound = std::numeric_limits<double>::max();
+        if (hint_count >= k) {
+            bound = 0.0;
+            for (int h = 0; h < hint_count; ++h) {
+                double dist = 0.0; // summed as nanoflann's L2_Simple_Adaptor does: the same value
+                for (int c = 0; c < D; ++c) {
+                    const double diff = q[c] - adaptor.kdtree_get_pt(static_cast<size_t>(hint[h]), static_cast<size_t>(c));
+                    dist += diff * diff;
+                }
+                bound = std::max(bound, dist);
             }
-            if (dist < result.worstDist()) result.addPoint(dist, hint[h]);
+            // nanoflann keeps points strictly nearer than the bound: one ulp above keeps the
+            // farthest hinted point too.
+            bound = std::nextafter(bound, std::numeric_limits<double>::max());
         }
+        nanoflann::KNNResultSet<double, int32_t> result(static_cast<size_t>(k));
+        result.init(idx, d2);
+        d2[k - 1] = bound; // the set's worst distance until it holds k points
         index.findNeighbors(result, q, nanoflann::SearchParams());
+        // Fewer than k within the bound: the hint repeated a point. Search without it.
+        if (static_cast<int>(result.size()) < k && bound < std::numeric_limits<double>::max()) return knn(q, k, idx, d2);
         return static_cast<int>(result.size());
     }
     void within(const double* q, double r, std::vector<int32_t>& out) const override {

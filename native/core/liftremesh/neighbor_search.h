@@ -24,9 +24,10 @@ public:
     //! (less than k only if the tree has fewer points). Thread-safe.
     int knn(const double* query, int k, int32_t* indices, double* squared_distances) const;
 
-    //! The same, warm-started by `hint`: `hint_count` distinct indices of points believed near
-    //! `query` (such as its neighbours a moment ago). Their distance bounds the search from the
-    //! start, so far fewer tree nodes are visited; the answer is the same (ties aside).
+    //! The same, warm-started by `hint`: `hint_count` indices of points believed near `query`
+    //! (such as its neighbours a moment ago). If there are at least k, the farthest of them
+    //! bounds the search from the start, so far fewer tree nodes are visited; the answer is the
+    //! same (ties aside). A hint that names fewer than k distinct points costs a second search.
     int knn(const double* query, int k, int32_t* indices, double* squared_distances, const int32_t* hint,
             int hint_count) const;
 
