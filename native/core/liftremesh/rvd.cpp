@@ -92,26 +92,33 @@ struct Polygon2 {
 // x = x0 + a u1 + b u2, |x - v_k|^2 <= |x - v_l|^2 reads (a, b).(ab_l - ab_k) <= (|w_l|^2 - |w_k|^2) / 2.
 // Sutherland-Hodgman; the new edge carries the id l. Returns false, leaving `out` untouched,
 // when the bisector misses the polygon (nothing cut).
-bool clip_by_bisector(const Polygon2& in, const PlanarSite& k, const PlanarSite& l, int32_t id, Polygon2& out) {
+[[gnu::always_inline]] inline bool clip_by_bisector(const Polygon2& in, const PlanarSite& k, const PlanarSite& l, int32_t id, Polygon2& out) {
     const Eigen::Vector2d dir = l.ab - k.ab;
     const double offset = 0.5 * (l.norm2 - k.norm2);
+    const int n = in.n; // local counts: `in` and `out` are never the same polygon, but the
+                        // compiler cannot know it and would reload them at every vertex
     double side[Polygon2::kCapacity];
     bool any_out = false;
-    for (int i = 0; i < in.n; ++i) {
+    for (int i = 0; i < n; ++i) {
         side[i] = in.v[i].dot(dir) - offset;
         any_out |= side[i] > 0.0;
     }
     if (!any_out) return false;
-    out.n = 0;
-    for (int i = 0; i < in.n; ++i) {
-        const int j = i + 1 == in.n ? 0 : i + 1;
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+        const int j = i + 1 == n ? 0 : i + 1;
         const bool in_i = side[i] <= 0.0, in_j = side[j] <= 0.0;
-        if (in_i) out.push(in.v[i], in.e[i]);
+        if (in_i) {
+            out.v[m] = in.v[i];
+            out.e[m++] = in.e[i];
+        }
         if (in_i != in_j) {
             const double t = side[i] / (side[i] - side[j]);
-            out.push(in.v[i] + t * (in.v[j] - in.v[i]), in_i ? id : in.e[i]); // leaving: the bisector follows
+            out.v[m] = in.v[i] + t * (in.v[j] - in.v[i]);
+            out.e[m++] = in_i ? id : in.e[i]; // leaving: the bisector follows
         }
     }
+    out.n = m;
     return true;
 }
 
@@ -212,6 +219,8 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     // Tree and nearest-neighbour lists, possibly from an earlier diagram: made at the anchor
     // positions, from which all sites but a few movers are at most st.rest away (see RvdCache).
     const Staleness st = refresh_neighbours(positions, threads, cache);
+    const char* const is_mover = st.is_mover.data(); // read for every listed neighbour: a local
+                                                      // pointer, not reloaded through `st`
     const KdTree& tree = *cache.tree;
     const int k_cached = cache.k;
     const int32_t* nn = cache.neighbours.data();
@@ -324,7 +333,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     // is at most st.rest from its anchor, so |v_k - v_l| >= |q - anchor_l| - slack,
                     // and no site at more than 2 sqrt(r2) from k can cut the polygon: none at
                     // |q - anchor_l|^2 > stop_d2 can.
-                    const bool k_moves = st.is_mover[k];
+                    const bool k_moves = is_mover[k];
                     const double* query = k_moves ? positions.row(k).data() : cache.anchor.row(k).data();
                     const double slack = (k_moves ? 0.0 : st.displacement[k]) + st.rest;
                     double r2 = max_squared_distance(*poly, vk.ab, off_plane2);
@@ -386,7 +395,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                             j = 0;
                         }
                         const int32_t l = list[j];
-                        if (l == k || st.is_mover[l]) continue; // movers come below
+                        if (l == k || is_mover[l]) continue; // movers come below
                         if (beyond_security(list_d2[j])) break; // security radius reached: so are all later and unlisted sites
                         if ((outcome = cut_by(l)) != kGoOn) break;
                     }
