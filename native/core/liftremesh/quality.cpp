@@ -76,10 +76,12 @@ double normal_angle_deg(const Mesh& mesh, const EdgeUse& s, const EdgeUse& t) {
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / M_PI;
 }
 
-void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
+//! Returns the number of distinct edges.
+long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
     const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
     std::vector<std::pair<int, int>> boundary;
-    for (size_t i = 0; i < uses.size();) {
+    long edges = 0;
+    for (size_t i = 0; i < uses.size(); ++edges) {
         size_t j = i;
         while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
         const size_t count = j - i;
@@ -102,6 +104,7 @@ void measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
             counted[component[a]] = 1;
             ++q.boundary_loops;
         }
+    return edges;
 }
 
 // ---- per vertex ---------------------------------------------------------------------------------
@@ -227,9 +230,10 @@ MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
     const std::vector<char> used = referenced_vertices(mesh);
     q.vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
     measure_triangles(mesh, q);
-    measure_edges(mesh, sharp_angle_deg, q);
+    const long edges = measure_edges(mesh, sharp_angle_deg, q);
     measure_vertices(mesh, q);
-    q.euler_characteristic = euler_characteristic(mesh);
+    // euler_characteristic(mesh), from the counts at hand instead of a second sort of the edges.
+    q.euler_characteristic = static_cast<int>(q.vertices - edges + q.triangles);
     return q;
 }
 
