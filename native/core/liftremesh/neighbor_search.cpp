@@ -57,7 +57,7 @@ struct Tree final : TreeBase {
         if (hint_count >= k) {
             bound = 0.0;
             for (int h = 0; h < hint_count; ++h) {
-                double dist = 0.0; // summed as nanoflann's L2_Simple_Adaptor does: the same value
+                double dist = 0.0; // summed as nanoflann's L2_Simple_Adaptor does: the value the search computes
                 for (int c = 0; c < D; ++c) {
                     const double diff = q[c] - adaptor.kdtree_get_pt(static_cast<size_t>(hint[h]), static_cast<size_t>(c));
                     dist += diff * diff;
@@ -73,7 +73,8 @@ struct Tree final : TreeBase {
         d2[k - 1] = bound; // the set's worst distance until it holds k points
         index.findNeighbors(result, q, nanoflann::SearchParams());
         // Fewer than k within the bound: the hint repeated a point. Search without it.
-        if (static_cast<int>(result.size()) < k && bound < std::numeric_limits<double>::max()) return knn(q, k, idx, d2);
+        if (static_cast<int>(result.size()) < k && bound < std::numeric_limits<double>::max())
+            return knn(q, k, idx, d2);
         return static_cast<int>(result.size());
     }
     void within(const double* q, double r, std::vector<int32_t>& out) const override {

@@ -92,7 +92,8 @@ struct Polygon2 {
 // x = x0 + a u1 + b u2, |x - v_k|^2 <= |x - v_l|^2 reads (a, b).(ab_l - ab_k) <= (|w_l|^2 - |w_k|^2) / 2.
 // Sutherland-Hodgman; the new edge carries the id l. Returns false, leaving `out` untouched,
 // when the bisector misses the polygon (nothing cut).
-[[gnu::always_inline]] inline bool clip_by_bisector(const Polygon2& in, const PlanarSite& k, const PlanarSite& l, int32_t id, Polygon2& out) {
+[[gnu::always_inline]] inline bool clip_by_bisector(const Polygon2& in, const PlanarSite& k, const PlanarSite& l,
+                                                    int32_t id, Polygon2& out) {
     const Eigen::Vector2d dir = l.ab - k.ab;
     const double offset = 0.5 * (l.norm2 - k.norm2);
     const int n = in.n; // local counts: `in` and `out` are never the same polygon, but the
