@@ -128,18 +128,23 @@ private:
 
 } // namespace
 
+namespace {
+// The distance part of the rule: the new diagonal's midpoint no farther from the input than the
+// old one's, or within half the tolerance.
+bool keeps_surface(double before, double after, double tolerance) { return after <= std::max(0.5 * tolerance, before); }
+} // namespace
+
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                                 double tolerance) {
-    if (!mesh.flip_improves_quality(quad)) return false;
+    if (!mesh.flip_improves_quality(quad)) return false; // first: it spares the two distance queries
     const std::vector<Eigen::Vector3d>& x = mesh.points;
     auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
-    return quality_flip_keeps_surface(mesh, quad, distance(0.5 * (x[quad.a] + x[quad.b])),
-                                      distance(0.5 * (x[quad.c] + x[quad.d])), tolerance);
+    return keeps_surface(distance(0.5 * (x[quad.a] + x[quad.b])), distance(0.5 * (x[quad.c] + x[quad.d])), tolerance);
 }
 
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
                                 double tolerance) {
-    return mesh.flip_improves_quality(quad) && after <= std::max(0.5 * tolerance, before);
+    return mesh.flip_improves_quality(quad) && keeps_surface(before, after, tolerance);
 }
 
 QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params) {
