@@ -178,7 +178,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("quality");
     report.output = measure_quality(out);
-    const DistanceStats distance = hausdorff_distance(input, out);
+    const DistanceStats distance = hausdorff_distance(input, input_tree, out); // the tree of the repair stage
     report.hausdorff_relative = distance.hausdorff / report.bbox_diagonal;
     report.mean_distance_relative = distance.mean / report.bbox_diagonal;
     clock.end();

@@ -238,12 +238,17 @@ MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
 }
 
 DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples, std::uint64_t seed) {
+    check_mesh(a, "first"); // before the tree is built
+    return hausdorff_distance(a, AabbTree(a), b, samples, seed);
+}
+
+DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, int samples, std::uint64_t seed) {
     check_mesh(a, "first");
     check_mesh(b, "second");
     const std::vector<Eigen::Vector3d> on_a = sample_surface(a, samples, 2 * seed);
     const std::vector<Eigen::Vector3d> on_b = sample_surface(b, samples, 2 * seed + 1);
     const std::vector<double> a_to_b = distances_to(on_a, AabbTree(b));
-    const std::vector<double> b_to_a = distances_to(on_b, AabbTree(a));
+    const std::vector<double> b_to_a = distances_to(on_b, a_tree);
 
     DistanceStats stats;
     stats.a_to_b = *std::max_element(a_to_b.begin(), a_to_b.end());

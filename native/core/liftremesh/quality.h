@@ -40,6 +40,12 @@ struct MeshQuality {
 //! Throws InvalidInput if a triangle index is out of range.
 MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg = 60.0);
 
+class AabbTree;
+
+//! Default sample count per side and seed of hausdorff_distance (100k, as in PEERS.md).
+constexpr int kDistanceSamples = 100000;
+constexpr std::uint64_t kDistanceSeed = 7;
+
 struct DistanceStats {
     double hausdorff = 0.0; //!< max of the two one-sided maxima (absolute units)
     double a_to_b = 0.0;    //!< max over samples of a of the distance to b
@@ -54,6 +60,10 @@ struct DistanceStats {
 //! parallel with OpenMP (default thread count; set it with omp_set_num_threads); the result
 //! does not depend on the thread count. Throws InvalidInput (via check_mesh) for an empty mesh,
 //! a non-finite coordinate or an index out of range.
-DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples = 100000, std::uint64_t seed = 7);
+DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples = kDistanceSamples,
+                                 std::uint64_t seed = kDistanceSeed);
+//! The same, with the AABB tree of `a` that the caller has built already (made from `a`).
+DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, int samples = kDistanceSamples,
+                                 std::uint64_t seed = kDistanceSeed);
 
 } // namespace liftremesh
