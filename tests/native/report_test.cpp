@@ -43,7 +43,8 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "sites_split", "holes_filled", "triangles_removed", "edges_collapsed",
-          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "timings", "warnings"})
+          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed", "vertex_fans_split",
+          "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
@@ -107,6 +108,12 @@ TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {
     EXPECT_EQ(cracks_closed(cracked), 2);
     EXPECT_EQ(cracks_closed(open), 0);
     EXPECT_TRUE(report_warnings(cracked).empty());
+    // The JSON carries the counts, so that its readers (report_summary.py, the task panel) need
+    // not repeat the rule.
+    const std::string json = to_json(cracked);
+    EXPECT_NE(json.find("\"cracks_closed\": 2,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"vertex_fans_split\": 0,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"expected_euler_characteristic\": 2,"), std::string::npos) << json;
     // Closing the cracks does not excuse another change: chi 1 with both loops gone, or chi 2
     // with one loop left, is another topology.
     cracked.output.euler_characteristic = 1;
@@ -128,6 +135,8 @@ TEST(Report, PartsTouchingAtAVertexComingOutApartIsNoWarning) {
     EXPECT_EQ(vertex_fans_split(touching), 1);
     EXPECT_EQ(expected_euler_characteristic(touching), 4);
     EXPECT_TRUE(report_warnings(touching).empty());
+    EXPECT_NE(to_json(touching).find("\"vertex_fans_split\": 1,"), std::string::npos);
+    EXPECT_NE(to_json(touching).find("\"expected_euler_characteristic\": 4,"), std::string::npos);
     // Merged into one sphere (chi 2), or the pinch kept and a handle made (chi 1): warned.
     for (int chi : {2, 3}) {
         touching.output.euler_characteristic = chi;

@@ -41,12 +41,11 @@ def report_html(report):
     extra = []
     if report.get("holes_filled"):
         extra.append("%d hole(s) filled" % report["holes_filled"])
-    cracks = (source.get("boundary_loops") or 0) - (output.get("boundary_loops") or 0)
-    if cracks > 0:
-        extra.append("%d crack(s) of the source closed" % cracks)
-    fans = (source.get("extra_vertex_fans") or 0) - (output.get("extra_vertex_fans") or 0)
-    if fans > 0:
-        extra.append("%d fan(s) of the source's non-manifold vertices split" % fans)
+    # counted by the core (report.h), as its warnings count them
+    if report.get("cracks_closed"):
+        extra.append("%d crack(s) of the source closed" % report["cracks_closed"])
+    if report.get("vertex_fans_split"):
+        extra.append("%d fan(s) of the source's non-manifold vertices split" % report["vertex_fans_split"])
     seconds = sum((report.get("timings") or {}).values())
     if seconds:
         extra.append("remeshed in %.1f s" % seconds)

@@ -159,6 +159,10 @@ std::string to_json(const RemeshReport& report) {
                         {"edges_flipped", json_number(report.edges_flipped)},
                         {"vertices_moved", json_number(report.vertices_moved)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
+                        {"cracks_closed", json_number(cracks_closed(report))},
+                        {"vertex_fans_split", json_number(vertex_fans_split(report))},
+                        {"expected_euler_characteristic",
+                         json_number(static_cast<long>(expected_euler_characteristic(report)))},
                         {"timings", json_timings(report.timings, 2)},
                         {"warnings", json_array(report.warnings, json_string)}},
                        0) +

@@ -1,0 +1,104 @@
+"""The report's readers, `scripts/report_summary.py` and the task panel's `report_view`, on a real
+report: a sphere with a crack (its seam left unwelded, as an STL export can leave one) comes out
+closed, and both readers show what the core counted instead of counting it again."""
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import liftremesh
+import mesh_checks
+
+SOURCE_DIR = os.environ.get("LIFTREMESH_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(mesh_checks.__file__)))))
+# scripts/report_summary.py runs on Debian's Python, as `make demo` runs it
+PYTHON = "/usr/bin/python3"
+
+
+def seamed_sphere(rings=16, sectors=32):
+    """Unit UV sphere whose seam (longitude 0 and 2 pi, pole to pole) is two rows of vertices a
+    rounding error apart: one boundary loop, chi 1. Outward oriented."""
+    points = [[0.0, 0.0, 1.0]]
+    for i in range(1, rings):
+        theta = math.pi * i / rings
+        for j in range(sectors + 1):  # j = sectors is j = 0 again, not welded
+            phi = 2.0 * math.pi * j / sectors
+            points.append([math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), math.cos(theta)])
+    points.append([0.0, 0.0, -1.0])
+    south = len(points) - 1
+
+    def at(i, j):
+        return 1 + (i - 1) * (sectors + 1) + j
+
+    triangles = []
+    for j in range(sectors):
+        triangles.append([0, at(1, j), at(1, j + 1)])
+        triangles.append([south, at(rings - 1, j + 1), at(rings - 1, j)])
+        for i in range(1, rings - 1):
+            a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
+            triangles += [[a, b, c], [a, c, d]]
+    return np.array(points, dtype=np.float64), np.array(triangles, dtype=np.int64)
+
+
+class CrackedSphereReport(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        points, triangles = seamed_sphere()
+        cls.input_chi = mesh_checks.euler_characteristic(points, triangles)
+        cls.points, cls.triangles, cls.report = liftremesh.remesh(points, triangles, vertices=500, seed=1)
+
+    def test_the_core_counts_the_crack_it_closes(self):
+        self.assertEqual(self.input_chi, 1)
+        self.assertTrue(mesh_checks.is_closed_oriented_manifold(self.triangles))
+        self.assertEqual(mesh_checks.euler_characteristic(self.points, self.triangles), 2)
+        self.assertEqual(self.report["input"]["boundary_loops"], 1)
+        self.assertEqual(self.report["cracks_closed"], 1)
+        self.assertEqual(self.report["vertex_fans_split"], 0)
+        self.assertEqual(self.report["expected_euler_characteristic"], 2)
+        self.assertEqual(self.report["warnings"], [])
+
+    def summary(self, report):
+        """(exit code, stdout) of report_summary.py --check on this report."""
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "report.json")
+            with open(path, "w") as f:
+                json.dump(report, f)
+            run = subprocess.run([PYTHON, os.path.join(SOURCE_DIR, "scripts", "report_summary.py"), path, "--check"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
+        return run.returncode, run.stdout + run.stderr
+
+    def test_report_summary_reads_the_counts(self):
+        status, text = self.summary(self.report)
+        self.assertEqual(status, 0, text)
+        self.assertIn("closed 2-manifold with the input's topology, 1 crack(s) of the input closed", text)
+        # It checks the output against the core's expected chi, not against a rule of its own:
+        # the same report expecting another chi fails the check.
+        other = dict(self.report, expected_euler_characteristic=1)
+        status, text = self.summary(other)
+        self.assertEqual(status, 1, text)
+        self.assertIn("NOT the input's topology", text)
+        # A report without the counts is refused, naming the key.
+        lacking = dict(self.report)
+        del lacking["cracks_closed"]
+        status, text = self.summary(lacking)
+        self.assertEqual(status, 2, text)
+        self.assertIn("cracks_closed", text)
+
+    def test_the_task_panel_shows_the_counts(self):
+        from LiftRemesh.gui import report_view
+
+        html = report_view.report_html(self.report)
+        self.assertIn("1 crack(s) of the source closed", html)
+        self.assertNotIn("fan(s)", html)
+        self.assertNotIn("Warning", html)
+        html = report_view.report_html(dict(self.report, cracks_closed=0, vertex_fans_split=2))
+        self.assertNotIn("crack(s)", html)
+        self.assertIn("2 fan(s) of the source's non-manifold vertices split", html)
+
+
+if __name__ == "__main__":
+    unittest.main()
