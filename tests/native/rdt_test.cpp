@@ -1,4 +1,6 @@
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/normals.h"
+#include "liftremesh/optimizer.h"
 #include "liftremesh/rdt.h"
 #include "liftremesh/sampling.h"
 #include "helpers.h"
@@ -70,6 +72,31 @@ TEST(RestrictedDelaunay, PiecesOfACellOnTwoSidesOfAThinPlateGetAVertexEach) {
         top_vertices += std::abs(z - gap) < 1e-12;
     }
     EXPECT_EQ(top_vertices, 9);
+}
+
+// The pipeline hands the optimiser's RvdCache (neighbour lists made at earlier iterates, a seed
+// site per triangle) to the triangulation instead of building them again: the triangulation
+// is the same as from scratch, and no list is rebuilt for it.
+TEST(RestrictedDelaunay, FromTheOptimisersCacheIsTheSameAsFromScratch) {
+    const Mesh torus = test::make_torus(1.0, 0.3, 40, 16);
+    const LiftedSurface s =
+        make_lifted_surface(lift(torus.points, vertex_normals(torus, 0.05), 0.05), torus.triangles);
+    LiftedPoints sites = random_sites(s, 600, 7);
+    RvdCache cache;
+    optimize_sites(s, sites, 5.0, 20, 2, {}, &cache);
+    ASSERT_GT(cache.rebuilds, 0);
+    const long rebuilds = cache.rebuilds;
+    const RestrictedDelaunay reused = restricted_delaunay(s, sites, 2, {}, &cache);
+    EXPECT_EQ(cache.rebuilds, rebuilds);
+    RvdCache empty; // a cache the triangulation does use: it fills it
+    const RestrictedDelaunay fresh = restricted_delaunay(s, sites, 2, {}, &empty);
+    EXPECT_EQ(empty.rebuilds, 1);
+    EXPECT_EQ(reused.mesh.points, fresh.mesh.points);
+    EXPECT_EQ(reused.mesh.triangles, fresh.mesh.triangles);
+    EXPECT_EQ(reused.split_sites, fresh.split_sites);
+    const test::Topology topo = test::topology(reused.mesh);
+    EXPECT_TRUE(topo.closed_oriented_manifold());
+    EXPECT_EQ(topo.chi, 0);
 }
 
 TEST(Sampling, IsReproducibleAndOnTheSurface) {

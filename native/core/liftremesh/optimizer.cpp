@@ -36,7 +36,7 @@ struct Problem {
     bool cancelled = false;
     std::exception_ptr error; // an exception from the objective, rethrown after lbfgs returns
     LiftedPoints sites, gradient;
-    RvdCache cache; // neighbour lists carried from one iterate to the next
+    RvdCache* cache = nullptr; // neighbour lists carried from one iterate to the next
 };
 
 lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const int n,
@@ -44,7 +44,7 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
     auto& p = *static_cast<Problem*>(instance);
     try {
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
-        const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, &p.cache);
+        const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, p.cache);
         std::copy(p.gradient.data(), p.gradient.data() + n, g);
         if (p.evaluations++ == 0) p.first_energy = f; // libLBFGS evaluates the start point first
         return f;
@@ -101,8 +101,9 @@ int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
 } // namespace
 
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
-                              int threads, const ProgressCallback& progress) {
+                              int threads, const ProgressCallback& progress, RvdCache* cache) {
     OptimizeResult result;
+    RvdCache own;
     const Schedule schedule = sigma > 1.0 ? two_phase_schedule(iterations) : Schedule{iterations, 0};
     Problem problem;
     problem.surface = &surface;
@@ -111,6 +112,7 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
     problem.rows = sites.rows();
     problem.cols = sites.cols();
     problem.progress = &progress;
+    problem.cache = cache ? cache : &own;
     problem.iteration_offset = 0;
     problem.total = iterations;
     // Phase 1 (sigma = 1), then phase 2 (sigma) (Section 6.2.2). A phase whose line search

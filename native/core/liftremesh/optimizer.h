@@ -26,7 +26,10 @@ Schedule two_phase_schedule(int iterations);
 //! lines 6-9. With sigma == 1 the whole budget is one phase. `progress` (may be empty) is called
 //! after each iteration; returning false throws Cancelled. A line search that fails (the
 //! objective is only C^2 almost everywhere, Section 3.2.3) ends the phase at the best point.
+//! `cache` (may be null) is the diagram's RvdCache the evaluations use: given, it is left with
+//! the lists and seeds of the last diagram, which the restricted Delaunay triangulation of the
+//! result can start from.
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
-                              int threads, const ProgressCallback& progress = {});
+                              int threads, const ProgressCallback& progress = {}, RvdCache* cache = nullptr);
 
 } // namespace liftremesh

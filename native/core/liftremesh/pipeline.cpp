@@ -125,7 +125,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("optimize");
     LiftedPoints sites = random_sites(surface, sites_wanted, params.seed);
-    const OptimizeResult opt = optimize_sites(surface, sites, params.sigma, params.iterations, params.threads, progress);
+    RvdCache diagram; // the optimiser's neighbour lists and seeds, reused by the triangulation
+    const OptimizeResult opt =
+        optimize_sites(surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram);
     report.sites = sites.rows();
     report.iterations = opt.iterations;
     report.evaluations = opt.evaluations;
@@ -135,7 +137,8 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("rdt");
     Mesh& out = result.mesh;
-    RestrictedDelaunay rdt = restricted_delaunay(surface, sites, params.threads); // Eq. 4, Algorithm 3, line 11
+    // Eq. 4, Algorithm 3, line 11
+    RestrictedDelaunay rdt = restricted_delaunay(surface, sites, params.threads, {}, &diagram);
     out = std::move(rdt.mesh);
     report.sites_split = rdt.split_sites;
     if (out.triangles.rows() == 0)

@@ -59,7 +59,7 @@ Piece measure_piece(const LiftedSurface& surface, const RvdPolygon& poly) {
 } // namespace
 
 RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
-                                       const RestrictedDelaunayParams& params) {
+                                       const RestrictedDelaunayParams& params, RvdCache* cache) {
     const long ns = static_cast<long>(sites.rows());
     std::vector<ChunkSlot<ChunkFound>> found(rvd_chunks(surface));
     compute_rvd(surface, sites, threads, [&](int chunk, const RvdPolygon& poly) {
@@ -72,7 +72,7 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             if (l < 0 || m < 0 || l == m) continue;
             f.corners.push_back({piece, l, m});
         }
-    });
+    }, cache);
     std::vector<Piece> pieces;
     std::vector<Corner> corners;
     for (auto& f : found) {

@@ -35,7 +35,9 @@ struct RestrictedDelaunay {
 //! meet at its point. Pieces of a cell are one when they lie on two triangles sharing an input
 //! edge and both reach that edge, or when both reach the input's boundary (so that cracks and
 //! gaps that the diagram spans stay closed, as the connectivity-free diagram makes them).
+//! `cache` (may be null): as in compute_rvd, such as the optimiser's, left at the sites' last
+//! positions; the triangulation is the same with or without it.
 RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0,
-                                       const RestrictedDelaunayParams& params = {});
+                                       const RestrictedDelaunayParams& params = {}, RvdCache* cache = nullptr);
 
 } // namespace liftremesh
