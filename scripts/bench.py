@@ -82,6 +82,19 @@ def best_of(cli, mesh_dir, out_dir, name, vertices, repeat):
     return best
 
 
+def host_gauge():
+    """Seconds a fixed single-threaded loop takes, best of 3: the host's speed at the time. On a
+    shared virtual machine it varies from day to day and hour to hour with the other guests;
+    compare tables made at the same gauge reading."""
+    def once():
+        start = time.perf_counter()
+        x = 0
+        for i in range(3000000):
+            x = (x * 31 + i) % 1000003
+        return time.perf_counter() - start
+    return min(once() for _ in range(3))
+
+
 def fmt(value, spec, scale=1.0):
     """A number formatted; "-" for a missing value (the report writes non-finite ones as null)."""
     return "-" if value is None else format(scale * value, spec)
@@ -146,6 +159,7 @@ def main():
         return 1
     os.makedirs(args.out, exist_ok=True)
 
+    gauge_before = host_gauge()
     rows = []
     for name, vertices in CASES:
         if args.only and name not in args.only:
@@ -155,8 +169,11 @@ def main():
             continue
         rows.append(best_of(args.cli, args.meshes, args.out, name, vertices, max(1, args.repeat)))
 
+    gauge_after = host_gauge()
     print("LiftRemesh benchmark: %d iterations, %d cores, %s" % (ITERATIONS, os.cpu_count(),
                                                                 time.strftime("%Y-%m-%d")))
+    print("host gauge (scripts/bench.py host_gauge, lower is faster): %.3f s before, %.3f s after"
+          % (gauge_before, gauge_after))
     print()
     print(table(rows))
     return 1 if any("report" not in r for r in rows) else 0
