@@ -36,7 +36,9 @@ struct RestrictedDelaunay {
 //! edge and both reach that edge, or when both reach the input's boundary (so that cracks and
 //! gaps that the diagram spans stay closed, as the connectivity-free diagram makes them).
 //! `cache` (may be null): as in compute_rvd, such as the optimiser's, left at the sites' last
-//! positions; the triangulation is the same with or without it.
+//! positions; the triangulation is the same with or without it (the diagram's polygons may
+//! differ by rounding, as compute_rvd says, which the triangulation does not see unless a
+//! point is within rounding of where four cells meet).
 RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0,
                                        const RestrictedDelaunayParams& params = {}, RvdCache* cache = nullptr);
 
