@@ -99,4 +99,43 @@ TEST(Within, FindsExactlyThePointsInsideTheRadius) {
     }
 }
 
+// within_sorted: the points at most the radius away, closest first, with the distances knn()
+// reports; a point exactly at the squared radius is in (the security radius test of rvd.cpp
+// stops only past it).
+TEST(Within, SortedListsEveryPointUpToTheRadiusClosestFirst) {
+    for (int d : {3, 6}) {
+        const RowMatrix p = random_points(1500, d, 12);
+        const KdTree tree(p);
+        for (long q = 0; q < p.rows(); q += 97) {
+            std::vector<int32_t> found;
+            std::vector<double> d2;
+            const int n = tree.within_sorted(p.row(q).data(), 0.35 * 0.35, found, d2);
+            ASSERT_EQ(n, static_cast<int>(found.size()));
+            ASSERT_EQ(found.size(), d2.size());
+            std::vector<int32_t> expected;
+            for (long i = 0; i < p.rows(); ++i)
+                if ((p.row(i) - p.row(q)).squaredNorm() <= 0.35 * 0.35) expected.push_back(static_cast<int32_t>(i));
+            std::vector<int32_t> sorted_found = found;
+            std::sort(sorted_found.begin(), sorted_found.end());
+            EXPECT_EQ(sorted_found, expected) << "d " << d << " query " << q;
+            EXPECT_TRUE(std::is_sorted(d2.begin(), d2.end()));
+            // The same distances as the k nearest, in the same order.
+            std::vector<int32_t> knn(n);
+            std::vector<double> knn_d2(n);
+            ASSERT_EQ(tree.knn(p.row(q).data(), n, knn.data(), knn_d2.data()), n);
+            EXPECT_EQ(knn_d2, d2);
+            EXPECT_EQ(knn, found);
+        }
+        // A point exactly at the radius is found.
+        std::vector<int32_t> found;
+        std::vector<double> d2;
+        std::vector<int32_t> all(p.rows());
+        std::vector<double> all_d2(p.rows());
+        tree.knn(p.row(0).data(), static_cast<int>(p.rows()), all.data(), all_d2.data());
+        const size_t at = static_cast<size_t>(std::find(all.begin(), all.end(), 1) - all.begin());
+        tree.within_sorted(p.row(0).data(), all_d2[at], found, d2); // row 1's distance, as the tree sums it
+        EXPECT_NE(std::find(found.begin(), found.end(), 1), found.end()) << "d " << d;
+    }
+}
+
 } // namespace

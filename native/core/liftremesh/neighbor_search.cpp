@@ -29,6 +29,7 @@ struct TreeBase {
     virtual int knn_hinted(const double* q, int k, int32_t* idx, double* d2, const int32_t* hint,
                            int hint_count) const = 0;
     virtual void within(const double* q, double r, std::vector<int32_t>& out) const = 0;
+    virtual void within_squared(const double* q, double r2, std::vector<std::pair<int32_t, double>>& found) const = 0;
 };
 
 // Fixed dimension D at compile time: nanoflann unrolls the distance loops.
@@ -79,10 +80,14 @@ struct Tree final : TreeBase {
     }
     void within(const double* q, double r, std::vector<int32_t>& out) const override {
         std::vector<std::pair<int32_t, double>> found;
+        within_squared(q, r * r, found); // nanoflann's L2 adaptor works in squared distances
+        for (const auto& f : found) out.push_back(f.first);
+    }
+    // Points at squared distance < r2, unordered, with that distance.
+    void within_squared(const double* q, double r2, std::vector<std::pair<int32_t, double>>& found) const override {
         nanoflann::SearchParams params;
         params.sorted = false;
-        index.radiusSearch(q, r * r, found, params); // nanoflann's L2 adaptor works in squared distances
-        for (const auto& f : found) out.push_back(f.first);
+        index.radiusSearch(q, r2, found, params);
     }
 };
 
@@ -130,6 +135,24 @@ int32_t KdTree::nearest(const double* query) const {
 void KdTree::within(const double* query, double radius, std::vector<int32_t>& out) const {
     if (size() == 0) return;
     impl_->tree->within(query, radius, out);
+}
+
+int KdTree::within_sorted(const double* query, double squared_radius, std::vector<int32_t>& indices,
+                          std::vector<double>& squared_distances) const {
+    indices.clear();
+    squared_distances.clear();
+    if (size() == 0 || !(squared_radius >= 0.0)) return 0;
+    std::vector<std::pair<int32_t, double>> found;
+    // nanoflann keeps distances strictly below its bound: one ulp above keeps those equal to it.
+    impl_->tree->within_squared(query, std::nextafter(squared_radius, std::numeric_limits<double>::max()), found);
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+        return a.second < b.second || (a.second == b.second && a.first < b.first);
+    });
+    for (const auto& [index, d2] : found) {
+        indices.push_back(index);
+        squared_distances.push_back(d2);
+    }
+    return static_cast<int>(indices.size());
 }
 
 } // namespace liftremesh

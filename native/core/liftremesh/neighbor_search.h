@@ -37,6 +37,12 @@ public:
     //! All points within distance `radius` of `query` (unordered), appended to `out`. Thread-safe.
     void within(const double* query, double radius, std::vector<int32_t>& out) const;
 
+    //! All points whose squared distance to `query` is at most `squared_radius`, closest first
+    //! (equal distances by index), into `indices` and `squared_distances` (replaced). Returns
+    //! how many. The distances are those knn() reports. Thread-safe.
+    int within_sorted(const double* query, double squared_radius, std::vector<int32_t>& indices,
+                      std::vector<double>& squared_distances) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

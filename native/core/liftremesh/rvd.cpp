@@ -382,18 +382,21 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         list_d2 = more_d2.data();
                     }
                     Outcome outcome = kGoOn;
+                    bool complete = false; // the list holds every site within the security radius
                     for (int j = 0;; ++j) {
-                        if (j == count) { // ran out of listed neighbours before the security radius
-                            if (count >= ns) break;
-                            const int wanted = static_cast<int>(std::min<long>(ns, 2L * count));
-                            more.resize(wanted);
-                            more_d2.resize(wanted);
-                            count = tree.knn(query, wanted, more.data(), more_d2.data());
+                        if (j == count) { // ran out of listed neighbours
+                            if (complete || count >= ns) break;
+                            // Before the security radius: every site within it, from the tree, in
+                            // the same order as a longer list would give (ties aside). It only
+                            // shrinks from here. Bisectors already applied cut nothing the
+                            // second time.
+                            const double reach = 2.0 * std::sqrt(r2) + slack;
+                            count = tree.within_sorted(query, reach * reach, more, more_d2);
                             list = more.data();
                             list_d2 = more_d2.data();
-                            // Ties may order the first entries differently: scan from the start.
-                            // Bisectors already applied cut nothing the second time.
+                            complete = true;
                             j = 0;
+                            if (count == 0) break;
                         }
                         const int32_t l = list[j];
                         if (l == k || is_mover[l]) continue; // movers come below
