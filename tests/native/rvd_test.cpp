@@ -60,6 +60,39 @@ TEST(CellAreas, ASingleSiteOwnsTheWholeSurface) {
     EXPECT_NEAR(restricted_cell_areas(s, v)[0], 24.0, 1e-12);
 }
 
+// Where the cutting sites lie beyond a site's 24 listed neighbours, the walk must find them in
+// the tree: a cluster of 40 sites (any one's 24 nearest are all in it) among sparse ones, whose
+// outer cells reach to the sparse sites' bisectors, on a slab with sites on one side only (a
+// polygon on the far side lies 0.3 from its site, so its security radius reaches further
+// still). The far side's cells are the near side's, projected: each site's area is twice what
+// it has on the near side alone, and the areas add up to the surface's.
+TEST(CellAreas, AreCompleteWhereTheSecurityRadiusOutrunsTheNeighbourList) {
+    const double gap = 0.3;
+    const Mesh bottom = test::make_square(1.0, 6);
+    Mesh slab = bottom;
+    slab.points.conservativeResize(2 * bottom.points.rows(), 3);
+    slab.points.bottomRows(bottom.points.rows()) = bottom.points;
+    slab.points.bottomRows(bottom.points.rows()).col(2).setConstant(gap);
+    slab.triangles.conservativeResize(2 * bottom.triangles.rows(), 3);
+    Triangles top = bottom.triangles.array() + static_cast<int32_t>(bottom.points.rows());
+    top.col(1).swap(top.col(2));
+    slab.triangles.bottomRows(bottom.triangles.rows()) = top;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Eigen::Vector3d> sites;
+    for (int c = 0; c < 40; ++c) sites.emplace_back(0.3 + 0.02 * u(rng), 0.5 + 0.02 * u(rng), 0.0);
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i)
+            if (i > 1 || j != 2) sites.emplace_back(0.1 + 0.2 * i + 0.02 * u(rng), 0.1 + 0.2 * j + 0.02 * u(rng), 0.0);
+    LiftedPoints v(static_cast<Eigen::Index>(sites.size()), 3);
+    for (size_t k = 0; k < sites.size(); ++k) v.row(static_cast<Eigen::Index>(k)) = sites[k].transpose();
+    const Eigen::VectorXd near = restricted_cell_areas(make_lifted_surface(bottom.points, bottom.triangles), v, 2);
+    const Eigen::VectorXd both = restricted_cell_areas(make_lifted_surface(slab.points, slab.triangles), v, 2);
+    EXPECT_NEAR(near.sum(), 1.0, 1e-9);
+    EXPECT_NEAR(both.sum(), 2.0, 1e-9);
+    EXPECT_LE((both - 2.0 * near).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 // RvdCache: neighbour lists made for earlier positions must give the same diagram as fresh
 // ones, including when a list runs out and is extended (irregular, unoptimised sites).
 TEST(CellAreas, AreTheSameWithNeighbourListsFromEarlierPositions) {
