@@ -43,8 +43,8 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "sites_split", "holes_filled", "triangles_removed", "edges_collapsed",
-          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed", "vertex_fans_split",
-          "expected_euler_characteristic", "timings", "warnings"})
+          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed",
+          "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
