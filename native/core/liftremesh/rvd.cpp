@@ -342,14 +342,14 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     // distance below that goes on without the square root, which clipping a
                     // polygon would otherwise pay at every cut.
                     double stop_d2 = -1.0;
-                    auto beyond_security = [&](double d2) {
-                        if (d2 <= 4.0 * r2) return false;
+                    auto security_d2 = [&]() {
                         if (stop_d2 < 0.0) {
                             const double reach = 2.0 * std::sqrt(r2) + slack;
                             stop_d2 = reach * reach;
                         }
-                        return d2 > stop_d2;
+                        return stop_d2;
                     };
+                    auto beyond_security = [&](double d2) { return d2 > 4.0 * r2 && d2 > security_d2(); };
                     const Eigen::Vector3d pk = positions.row(k).transpose();
                     // Applies the bisector of k and l if l is near enough to cut the polygon.
                     enum Outcome { kGoOn, kEmpty, kFull };
@@ -390,8 +390,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                             // the same order as a longer list would give (ties aside). It only
                             // shrinks from here. Bisectors already applied cut nothing the
                             // second time.
-                            const double reach = 2.0 * std::sqrt(r2) + slack;
-                            count = tree.within_sorted(query, reach * reach, more, more_d2);
+                            count = tree.within_sorted(query, security_d2(), more, more_d2);
                             list = more.data();
                             list_d2 = more_d2.data();
                             complete = true;
