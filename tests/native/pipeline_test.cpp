@@ -272,8 +272,11 @@ INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMeshSharpEdges, ::testing::Values("gm
 //   degrees; ours, another faceting of the same circles, measure 57-62 (59.8 on average):
 //   23.2 units of our sharp length lie on those circles; without them the ratio is 0.998.
 //   With our vertices near it moved exactly onto the input (surface and crease) the crease's
-//   edges average 60.7 and the ratio is 1.048; a regular faceting at our edge length would
-//   measure 55.7-58.8. Gmsh and MMG, which keep the crease too, measure +7.4%;
+//   edges average 60.7 and the ratio is 1.048. At our crease edge length (0.7) the isosceles
+//   triangles a centroidal tessellation stands on a crease edge give 62.4 degrees, right
+//   triangles (a prism faceting, as the input's) 58.6 (scripts/crease_faceting.py): well-shaped
+//   triangles count the whole rims (+9.3%) unless the crease edges are five times shorter.
+//   Gmsh and MMG, which keep the crease too, measure +7.4%;
 // - lever: two differently faceted coaxial cylinders (radius 14) meet at y = -19.24 through a
 //   ring of slivers at most 0.12 wide (5% of the edge length); the input counts both rims of
 //   that step as 90-degree creases (~90 of the 96 missing units), the output meshes the smooth
