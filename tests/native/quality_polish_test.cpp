@@ -1,5 +1,6 @@
 // The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
-// a flip that moves the surface away from the input are not; a vertex pushed out of place on a
+// a flip that moves the surface away from the input are not; a fold is flipped onto the input,
+// a sharp crease of the input is not; a vertex pushed out of place on a
 // flat part is moved back, one on a crease is not; a closed surface keeps its topology, its
 // orientation and its worst triangle at least as good.
 #include "liftremesh/exceptions.h"
@@ -64,6 +65,54 @@ TEST(QualityPolish, AFlipThatLeavesTheInputIsNotMade) {
     Mesh tight = bent;
     EXPECT_EQ(flips(tight, input, 0.05), 0); // 0.035 > half the tolerance, and a-b lies on it
     EXPECT_EQ(flips(bent, input, 0.1), 1);   // 0.035 <= 0.05
+}
+
+// The end of a wall 1 thick (sides x = 0 and x = 1, end y = 0), as t13's with seed 3: the
+// quad t, v, w, u has t on the side x = 0, v on the far crease, u and w on the near crease. Split
+// along t-v, its triangles cut through the wall's corner, turning by 112 degrees, up to 0.3
+// from the input; the diagonal u-w puts one triangle on the side, one on the end.
+Mesh wall_end() {
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    auto rectangle = [&](const Eigen::Vector3d& o, const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
+        const auto i = static_cast<int32_t>(p.size());
+        p.insert(p.end(), {o, o + e1, o + e1 + e2, o + e2}); // normal e1 x e2, out of the wall
+        f.push_back({i, i + 1, i + 2});
+        f.push_back({i, i + 2, i + 3});
+    };
+    rectangle({0, 0, -1}, {0, 0, 3}, {0, 3, 0}); // side x = 0
+    rectangle({0, 0, -1}, {1, 0, 0}, {0, 0, 3}); // end y = 0
+    rectangle({1, 0, -1}, {0, 3, 0}, {0, 0, 3}); // side x = 1
+    return test::make_mesh(p, f);
+}
+
+TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
+    // t, v, w, u; the triangles (t, v, w) and (v, t, u).
+    Mesh m = test::make_mesh({{0, 0.8, 0.4}, {1, 0, 0.4}, {0, 0, 0.8}, {0, 0, 0}}, {{0, 1, 2}, {1, 0, 3}});
+    const AabbTree input(wall_end());
+    ASSERT_GT(test::largest_dihedral_deg(m), 110.0);
+    Mesh near_enough = m; // the fold is within a tolerance of 0.5: left as it is
+    EXPECT_EQ(polish_quality(near_enough, input, with_tolerance(0.5)).unfolded, 0);
+    const QualityPolishStats stats = polish_quality(m, input, with_tolerance(0.1));
+    EXPECT_EQ(stats.unfolded, 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    for (Eigen::Index f = 0; f < 2; ++f) // on the input now (its corners were already)
+        EXPECT_LE(input.closest((corner(m, f, 0) + corner(m, f, 1) + corner(m, f, 2)) / 3.0).squared_distance, 1e-24);
+    EXPECT_LT(test::largest_dihedral_deg(m), 90.0 + 1e-9);
+    EXPECT_GE(test::min_kappa(m), 0.3);
+}
+
+// A blade of the input: two faces turning by 135 degrees about a-b. Followed by the mesh, it is
+// no fold, and flipping it would cut the blade.
+TEST(QualityPolish, ASharpCreaseOfTheInputIsNoFold) {
+    const double s = std::sqrt(0.5);
+    Mesh m = test::make_mesh({{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, -s, s}}, {{1, 0, 2}, {0, 1, 3}});
+    const AabbTree input(m);
+    const QualityPolishStats stats = polish_quality(m, input, with_tolerance(1e3));
+    EXPECT_EQ(stats.unfolded, 0);
+    EXPECT_EQ(stats.flipped, 0);
+    EXPECT_TRUE(has_edge(m, 0, 1));
 }
 
 TEST(QualityPolish, AVertexPushedOutOfPlaceOnAFlatPartIsMovedBack) {

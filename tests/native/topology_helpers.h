@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <random>
@@ -97,6 +98,26 @@ inline double min_kappa(const Mesh& m, Eigen::Index first = 0) {
     for (Eigen::Index f = first; f < m.triangles.rows(); ++f)
         k = std::min(k, triangle_kappa(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2)));
     return k;
+}
+
+//! Largest angle, in degrees, between the normals of two triangles sharing an edge in opposite
+//! directions (0 where the surface is flat, 180 where it folds back onto itself).
+inline double largest_dihedral_deg(const Mesh& m) {
+    std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge; // directed edge -> its triangle
+    auto normal = [&](Eigen::Index f) {
+        const Eigen::Vector3d a = corner(m, f, 0), b = corner(m, f, 1), c = corner(m, f, 2);
+        return Eigen::Vector3d((b - a).cross(c - a).normalized());
+    };
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) by_edge[{m.triangles(f, j), m.triangles(f, (j + 1) % 3)}] = f;
+    double largest = 0.0;
+    for (const auto& [e, f] : by_edge) {
+        const auto twin = by_edge.find({e.second, e.first});
+        if (twin == by_edge.end() || e.first > e.second) continue;
+        const double c = std::clamp(normal(f).dot(normal(twin->second)), -1.0, 1.0);
+        largest = std::max(largest, std::acos(c) * 180.0 / M_PI);
+    }
+    return largest;
 }
 
 //! Number of triangles [first, #F) whose normal points towards `center` (inward on a sphere).

@@ -46,6 +46,7 @@ struct AabbTree::Impl {
     std::vector<Node> nodes;              //!< nodes[0] is the root (empty tree: no node)
     std::vector<Eigen::Vector3d> corners; //!< 3 corners per triangle, in tree order
     std::vector<int32_t> ids;             //!< input triangle index, in tree order
+    std::vector<Eigen::Vector3d> normals; //!< unit normal per input triangle, in input order
 
     //! Builds the subtree of nodes[index] over order[begin, end), splitting at the median
     //! centroid along the longest axis of the centroids' box.
@@ -100,6 +101,8 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
         centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
     }
     if (nf == 0) return;
+    impl_->normals.reserve(static_cast<size_t>(nf));
+    for (const auto& t : triangles) impl_->normals.push_back(liftremesh::triangle_normal(t[0], t[1], t[2]));
 
     std::vector<int32_t> order(static_cast<size_t>(nf));
     std::iota(order.begin(), order.end(), 0);
@@ -128,6 +131,12 @@ ClosestPoint AabbTree::closest(const Eigen::Vector3d& q, const Eigen::Vector3d& 
 
 int32_t AabbTree::any_within(const Eigen::Vector3d& q, double r) const {
     return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, true).triangle;
+}
+
+Eigen::Vector3d AabbTree::triangle_normal(int32_t triangle) const {
+    if (triangle < 0 || static_cast<size_t>(triangle) >= impl_->normals.size())
+        throw InvalidInput("AABB tree: no triangle " + std::to_string(triangle));
+    return impl_->normals[static_cast<size_t>(triangle)];
 }
 
 ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit) const {

@@ -38,6 +38,10 @@ public:
     //! that stops at the first such triangle, far cheaper than closest() when r is small.
     int32_t any_within(const Eigen::Vector3d& q, double r) const;
 
+    //! Unit normal of the mesh's triangle `triangle` (as ClosestPoint::triangle numbers it),
+    //! in its orientation; zero for a degenerate triangle.
+    Eigen::Vector3d triangle_normal(int32_t triangle) const;
+
 private:
     //! best: initial bound; first_hit: return as soon as a triangle beats it.
     ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false) const;

@@ -11,15 +11,22 @@ namespace liftremesh {
 
 namespace {
 
-// Passes of quality flips, the first over the edges of the triangles flagged in `around`, each
-// next one over those of the triangles the last one changed. Returns the flips.
-long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, int passes, std::vector<char> around) {
+// Passes of fold and quality flips (the two rules ask for turns over 90 degrees and under 30:
+// never both), the first over the edges of the triangles flagged in `around`, each next one
+// over those of the triangles the last one changed. Returns the flips; counts the folds undone.
+long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, int passes, std::vector<char> around,
+                 long& unfolded) {
     long total = 0;
     std::vector<char> changed;
+    auto accept = [&](const EditableMesh::Quad& q) {
+        if (fold_flip_fits_input(mesh, q, input, tolerance)) {
+            ++unfolded;
+            return true;
+        }
+        return quality_flip_keeps_surface(mesh, q, input, tolerance);
+    };
     for (int pass = 0; pass < passes; ++pass) {
-        const long flips = mesh.flip_pass_around(
-            around, [&](const EditableMesh::Quad& q) { return quality_flip_keeps_surface(mesh, q, input, tolerance); },
-            changed);
+        const long flips = mesh.flip_pass_around(around, accept, changed);
         total += flips;
         if (flips == 0) break;
         around.swap(changed);
@@ -134,6 +141,45 @@ namespace {
 bool keeps_surface(double before, double after, double tolerance) { return after <= std::max(0.5 * tolerance, before); }
 } // namespace
 
+namespace {
+// Largest distance from the input of seven points of the triangle: its centroid, its edges'
+// midpoints and the points halfway from the centroid to its corners (the corners themselves
+// are vertices of the output, put on the input).
+double distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    const Eigen::Vector3d& a = mesh.points[t[0]];
+    const Eigen::Vector3d& b = mesh.points[t[1]];
+    const Eigen::Vector3d& c = mesh.points[t[2]];
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    double d2 = 0.0;
+    for (const Eigen::Vector3d& p : {g, Eigen::Vector3d(0.5 * (a + b)), Eigen::Vector3d(0.5 * (b + c)),
+                                     Eigen::Vector3d(0.5 * (c + a)), Eigen::Vector3d(0.5 * (g + a)),
+                                     Eigen::Vector3d(0.5 * (g + b)), Eigen::Vector3d(0.5 * (g + c))})
+        d2 = std::max(d2, input.closest(p).squared_distance);
+    return std::sqrt(d2);
+}
+
+// Within `tolerance` of the input (distance_from_input), its normal within 30 degrees of the
+// input's triangle nearest to its centroid.
+bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input, double tolerance) {
+    const ClosestPoint near = input.closest((mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0);
+    return near.triangle >= 0 && EditableMesh::turns_little(mesh.normal(t), input.triangle_normal(near.triangle)) &&
+           distance_from_input(mesh, t, input) <= tolerance;
+}
+} // namespace
+
+bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                          double tolerance) {
+    const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
+    const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
+    if (!(mesh.normal(t1).dot(mesh.normal(t2)) < 0.0)) return false; // turns by 90 degrees at most
+    if (!(std::max(distance_from_input(mesh, t1, input), distance_from_input(mesh, t2, input)) > tolerance))
+        return false; // near the input: a crease of it, followed, or a fold too small to matter
+    const auto [n1, n2] = EditableMesh::flipped(quad);
+    const double worse_before = std::min(mesh.kappa(t1), mesh.kappa(t2));
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(worse_before, 0.3))) return false;
+    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+}
+
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                                 double tolerance) {
     if (!mesh.flip_improves_quality(quad)) return false; // first: it spares the two distance queries
@@ -155,7 +201,7 @@ QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const Quali
     EditableMesh editable(mesh);
     QualityPolishStats stats;
     stats.flipped = flip_passes(editable, input, params.tolerance, params.flip_passes,
-                                std::vector<char>(editable.tris.size(), 1));
+                                std::vector<char>(editable.tris.size(), 1), stats.unfolded);
     std::vector<char> moved(editable.points.size(), 0);
     Relaxation relaxation(editable, input, params);
     for (int pass = 0; pass < params.relax_passes; ++pass) {
@@ -167,7 +213,7 @@ QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const Quali
         std::vector<char> around(editable.tris.size(), 0);
         for (size_t t = 0; t < editable.tris.size(); ++t)
             for (int32_t v : editable.tris[t]) around[t] = around[t] || moved[v];
-        stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes, around);
+        stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes, around, stats.unfolded);
     }
     if (stats.flipped > 0 || stats.moved > 0) editable.write_to(mesh);
     return stats;

@@ -5,6 +5,11 @@
 // diagonal (gmsh_lever.stl, seed 3: a triangle of kappa 0.32 whose flip gives 0.67 and 0.73) and
 // some flat triangles obtuse (the lever, seed 10: 0.37 with its three vertices on one plane).
 // As Gmsh, MMG and CGAL do after their own steps:
+// - folds: an edge whose two triangles turn by more than 90 degrees and reach farther from the
+//   input than the tolerance (on t13, seed 3: a triangle across the end of a wall thinner than
+//   the edge length, folded 157 degrees onto its neighbour, 0.74 from the input) is flipped when
+//   both new triangles lie on it (fold_flip_fits_input); a crease of the input, followed, is
+//   near it and left alone;
 // - flips: an edge is flipped when its quad is nearly planar and the worse kappa (Eq. 26) of its
 //   two triangles goes up (EditableMesh::flip_improves_quality: never across a sharp edge, whose
 //   triangles turn by more than 30 degrees), and the new diagonal's midpoint is no farther from
@@ -40,7 +45,8 @@ struct QualityPolishParams {
 };
 
 struct QualityPolishStats {
-    long flipped = 0; //!< edge flips
+    long flipped = 0; //!< edge flips, folds undone included
+    long unfolded = 0; //!< of those, the flips that undid a fold
     long moved = 0;   //!< vertex moves
 };
 
@@ -52,6 +58,15 @@ bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Qu
 //! the quad's edge (`before`) and of the other diagonal (`after`) already.
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
                                 double tolerance);
+
+//! Whether flipping the quad's edge undoes a fold (the first rule above): its two triangles turn
+//! by more than 90 degrees and one of them is farther than `tolerance` from the input, both new
+//! ones lie on the input, their worse kappa at least the old pair's or 0.3. A triangle's
+//! distance is the largest of seven of its points (centroid, edge midpoints, halfway from the
+//! centroid to each corner); it lies on the input when that is within `tolerance` and its
+//! normal within 30 degrees of the input's triangle nearest to its centroid.
+bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                          double tolerance);
 
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
