@@ -139,9 +139,12 @@ TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
 // The acceptance criteria of the core on real CAD STL exports (../shared/meshes), at 6000
 // vertices with the default settings.
 namespace {
-RemeshResult remesh_shared(const std::string& path, Mesh& input) {
+// A shared mesh at 6000 vertices, default settings but for the seed.
+RemeshResult remesh_shared(const std::string& path, Mesh& input, std::uint64_t seed = RemeshParams{}.seed) {
     input = read_mesh(path);
-    return remesh(input, params_with(6000));
+    RemeshParams p = params_with(6000);
+    p.seed = seed;
+    return remesh(input, p);
 }
 std::string mesh_name(const ::testing::TestParamInfo<const char*>& info) {
     const std::string name = info.param;
@@ -205,10 +208,8 @@ TEST(Remesh, NonManifoldVerticesOfTheInputAreSplitWithoutAWarning) {
 // crease points inserted bring the result back within 0.5%.
 TEST(Remesh, ChamferedSharpEdgesGetTheirCreasePointsBack) {
     LIFTREMESH_REQUIRE_SHARED(path, "gmsh_t13_data.stl");
-    const Mesh input = read_mesh(path);
-    RemeshParams p = params_with(6000);
-    p.seed = 10;
-    const RemeshResult r = remesh(input, p);
+    Mesh input;
+    const RemeshResult r = remesh_shared(path, input, 10);
     EXPECT_GT(r.report.vertices_inserted, 0);
     EXPECT_LE(r.report.hausdorff_relative, 0.005);
     EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
@@ -222,10 +223,8 @@ TEST(Remesh, ChamferedSharpEdgesGetTheirCreasePointsBack) {
 // (135 degrees) but for a few degrees of faceting.
 TEST(Remesh, AFoldAcrossAThinWallIsFlippedOntoTheInput) {
     LIFTREMESH_REQUIRE_SHARED(path, "gmsh_t13_data.stl");
-    const Mesh input = read_mesh(path);
-    RemeshParams p = params_with(6000);
-    p.seed = 3;
-    const RemeshResult r = remesh(input, p);
+    Mesh input;
+    const RemeshResult r = remesh_shared(path, input, 3);
     EXPECT_LE(r.report.hausdorff_relative, 0.005);
     EXPECT_LE(test::largest_dihedral_deg(r.mesh), test::largest_dihedral_deg(input) + 5.0);
     EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
@@ -255,10 +254,8 @@ class PolishedLever : public ::testing::TestWithParam<int> {};
 
 TEST_P(PolishedLever, WorstFlatTrianglesAreFlippedOrRelaxed) {
     LIFTREMESH_REQUIRE_SHARED(path, "gmsh_lever.stl");
-    const Mesh input = read_mesh(path);
-    RemeshParams p = params_with(6000);
-    p.seed = GetParam();
-    const RemeshResult r = remesh(input, p);
+    Mesh input;
+    const RemeshResult r = remesh_shared(path, input, GetParam());
     EXPECT_GT(r.report.edges_flipped + r.report.vertices_moved, 0);
     EXPECT_GE(r.report.output.kappa_min, 0.45);
     EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
