@@ -1,8 +1,8 @@
 // The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
-// a sharp crease of the input is not; a vertex pushed out of place on a
-// flat part is moved back, one on a crease is not; a closed surface keeps its topology, its
-// orientation and its worst triangle at least as good.
+// a sharp crease of the input is not; a vertex pushed out of place on a flat part is moved back,
+// one on a crease is not; a closed surface keeps its topology, its orientation and its worst
+// triangle at least as good.
 #include "liftremesh/exceptions.h"
 #include "liftremesh/quality.h"
 #include "liftremesh/quality_polish.h"

@@ -139,9 +139,7 @@ namespace {
 // The distance part of the rule: the new diagonal's midpoint no farther from the input than the
 // old one's, or within half the tolerance.
 bool keeps_surface(double before, double after, double tolerance) { return after <= std::max(0.5 * tolerance, before); }
-} // namespace
 
-namespace {
 // Largest distance from the input of seven points of the triangle: its centroid, its edges'
 // midpoints and the points halfway from the centroid to its corners (the corners themselves
 // are vertices of the output, put on the input).

@@ -45,9 +45,9 @@ struct QualityPolishParams {
 };
 
 struct QualityPolishStats {
-    long flipped = 0; //!< edge flips, folds undone included
+    long flipped = 0;  //!< edge flips, folds undone included
     long unfolded = 0; //!< of those, the flips that undid a fold
-    long moved = 0;   //!< vertex moves
+    long moved = 0;    //!< vertex moves
 };
 
 //! Whether flipping the quad's edge is a quality flip that keeps the surface on the input
