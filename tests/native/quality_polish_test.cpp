@@ -69,7 +69,7 @@ TEST(QualityPolish, AFlipThatLeavesTheInputIsNotMade) {
 
 // The end of a wall 1 thick (sides x = 0 and x = 1, end y = 0), as t13's with seed 3: the
 // quad t, v, w, u has t on the side x = 0, v on the far crease, u and w on the near crease. Split
-// along t-v, its triangles cut through the wall's corner, turning by 112 degrees, up to 0.4
+// along t-v, its triangles cut through the wall's corner, turning by 115 degrees, up to 0.4
 // from the input; the diagonal u-w puts one triangle on the side, one on the end.
 Mesh wall_end() {
     std::vector<Eigen::Vector3d> p;
