@@ -17,15 +17,7 @@
 
 namespace liftremesh::test {
 
-inline Mesh make_mesh(const std::vector<Eigen::Vector3d>& pts, const std::vector<std::array<int32_t, 3>>& tris) {
-    Mesh m;
-    m.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
-    for (size_t i = 0; i < pts.size(); ++i) m.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
-    m.triangles.resize(static_cast<Eigen::Index>(tris.size()), 3);
-    for (size_t i = 0; i < tris.size(); ++i)
-        for (int j = 0; j < 3; ++j) m.triangles(static_cast<Eigen::Index>(i), j) = tris[i][j];
-    return m;
-}
+using liftremesh::make_mesh; // the core's (mesh.h), as test::make_mesh in the tests
 
 //! Unit icosphere (radius r), outward oriented: 12 vertices at level 0, x4 faces per level.
 inline Mesh make_icosphere(int levels, double r = 1.0) {

@@ -127,11 +127,7 @@ int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
     return m;
 }
 
-Mesh EditableMesh::to_mesh() const {
-    Mesh mesh;
-    write_to(mesh, 0);
-    return mesh;
-}
+Mesh EditableMesh::to_mesh() const { return make_mesh(points, tris); }
 
 void EditableMesh::write_to(Mesh& mesh, Eigen::Index first) const {
     mesh.points.resize(static_cast<Eigen::Index>(points.size()), 3);

@@ -8,6 +8,16 @@
 
 namespace liftremesh {
 
+Mesh make_mesh(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int32_t, 3>>& triangles) {
+    Mesh mesh;
+    mesh.points.resize(static_cast<Eigen::Index>(points.size()), 3);
+    for (size_t i = 0; i < points.size(); ++i) mesh.points.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+    mesh.triangles.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+    for (size_t i = 0; i < triangles.size(); ++i)
+        for (int j = 0; j < 3; ++j) mesh.triangles(static_cast<Eigen::Index>(i), j) = triangles[i][j];
+    return mesh;
+}
+
 UnitBallTransform unit_ball_transform(const Mesh& mesh) {
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double total = 0.0;

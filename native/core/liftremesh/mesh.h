@@ -24,6 +24,9 @@ struct Mesh {
     Triangles triangles; //!< #F by 3
 };
 
+//! A mesh with these points and triangles (as the stages that build one in vectors keep them).
+Mesh make_mesh(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int32_t, 3>>& triangles);
+
 //! Position of corner j (0, 1, 2) of triangle f.
 inline Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
     return mesh.points.row(mesh.triangles(f, j)).transpose();

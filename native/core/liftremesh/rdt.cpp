@@ -176,12 +176,7 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
 
-    Mesh& mesh = result.mesh;
-    mesh.points.resize(static_cast<Eigen::Index>(points.size()), 3);
-    for (size_t i = 0; i < points.size(); ++i) mesh.points.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-    mesh.triangles.resize(static_cast<Eigen::Index>(all.size()), 3);
-    for (size_t i = 0; i < all.size(); ++i)
-        for (int j = 0; j < 3; ++j) mesh.triangles(static_cast<Eigen::Index>(i), j) = all[i][j];
+    result.mesh = make_mesh(points, all);
     return result;
 }
 
