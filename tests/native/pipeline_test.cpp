@@ -11,6 +11,7 @@
 #include "topology_helpers.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 using namespace liftremesh;
 
@@ -134,6 +135,28 @@ TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     EXPECT_THROW(remesh(bad, p), InvalidInput);
     p.sigma = 0.5;
     EXPECT_THROW(remesh(input, p), InvalidInput);
+}
+
+// RemeshParams::threads holds in every stage, not only in the diagram's loops, which take the
+// count as an argument: the other parallel loops (normals, refinement, quality) start teams of
+// OpenMP's default size, which the run sets, and gives back when it returns. The count asked for
+// is not the machine's default, so the test fails if the run leaves the default alone.
+TEST(Remesh, TheThreadCountHoldsInEveryStageAndIsGivenBack) {
+    const int before = omp_get_max_threads();
+    const int asked = before == 3 ? 2 : 3;
+    RemeshParams p = params_with(200);
+    p.threads = asked;
+    std::vector<std::string> stages;
+    const ProgressCallback progress = [&](const Progress& info) {
+        if (stages.empty() || stages.back() != info.stage) {
+            stages.push_back(info.stage);
+            EXPECT_EQ(omp_get_max_threads(), asked) << "stage " << info.stage;
+        }
+        return true;
+    };
+    remesh(test::make_icosphere(2), p, progress);
+    EXPECT_GE(stages.size(), 6u); // prepare, normals, optimize, rdt, repair, quality
+    EXPECT_EQ(omp_get_max_threads(), before);
 }
 
 // The acceptance criteria of the core on real CAD STL exports (../shared/meshes), at 6000

@@ -52,8 +52,8 @@ struct RemeshParams {
     //! Seed of the random initial sampling: a given seed gives the same result, to the bit, on
     //! any number of threads. Default 1.
     std::uint64_t seed = 1;
-    //! Worker threads for the restricted Voronoi diagram and the objective; 0 = all cores. The
-    //! result is the same, to the bit, for any count.
+    //! Worker threads for every parallel stage (the diagram and objective, normals, refinement,
+    //! quality measures); 0 = all cores. The result is the same, to the bit, for any count.
     int threads = 0;
     //! Fill the holes of the restricted Delaunay triangulation that the input does not have
     //! (Section 5.2.2), with vertices added inside the patches (patch_refinement.h). Default true.

@@ -18,6 +18,7 @@
 #include "liftremesh/repair.h"
 #include "liftremesh/rvd.h"
 #include "liftremesh/sampling.h"
+#include "liftremesh/threads.h"
 
 #include <chrono>
 #include <sstream>
@@ -97,6 +98,7 @@ long target_site_count(const RemeshParams& params, double area) {
 
 RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const ProgressCallback& progress) {
     params.validate();
+    const ThreadCountScope threads(params.threads); // every parallel loop of the run, not just the diagram's
     RemeshResult result;
     RemeshReport& report = result.report;
     StageClock clock(report, progress);

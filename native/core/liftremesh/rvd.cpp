@@ -5,8 +5,6 @@
 #include "liftremesh/geometry.h"
 #include "liftremesh/neighbor_search.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -61,8 +59,6 @@ double polygon_area(const RvdPolygon& poly) {
     }
     return 0.5 * std::abs(twice);
 }
-
-int resolve_threads(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
 
 int rvd_chunks(const LiftedSurface& surface) {
     // About 32 triangles a chunk: small enough to even out the threads' ends, large enough to

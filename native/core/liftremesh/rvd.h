@@ -14,6 +14,7 @@
 
 #include "liftremesh/mesh.h"
 #include "liftremesh/neighbor_search.h"
+#include "liftremesh/threads.h"
 
 #include <algorithm>
 #include <functional>
@@ -113,9 +114,6 @@ private:
     T zero_;
     std::vector<ChunkSlot<std::vector<Entry>>> chunks_;
 };
-
-//! The number of threads actually used for a requested count (0 = all cores).
-int resolve_threads(int threads);
 
 //! What one diagram can hand to the next when the sites move little between them (the
 //! optimiser's iterates): a kd-tree of the sites and nearest-neighbour lists, both made at
