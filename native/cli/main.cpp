@@ -6,7 +6,10 @@
 #include "liftremesh/pipeline.h"
 #include "liftremesh/report.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -34,6 +37,21 @@ bool print_progress(const Progress& p) {
     return true;
 }
 
+// Refuses, before the work, a file the run could not write at its end: one in a directory that
+// does not exist or cannot be written to, or a name that is a directory. Without this, a long run
+// was lost at its last step.
+void check_writable(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::path target = fs::absolute(path, error);
+    if (fs::is_directory(target, error)) throw InvalidInput("cannot write '" + path + "': it is a directory");
+    const fs::path directory = target.parent_path();
+    if (!fs::is_directory(directory, error))
+        throw InvalidInput("cannot write '" + path + "': no directory '" + directory.string() + "'");
+    if (::access(directory.c_str(), W_OK) != 0)
+        throw InvalidInput("cannot write '" + path + "': directory '" + directory.string() + "' is not writable");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -49,6 +67,8 @@ int main(int argc, char** argv) {
     }
     try {
         check_mesh_extension(options.output); // refuse a bad output name before the work
+        check_writable(options.output);
+        if (!options.report_path.empty()) check_writable(options.report_path);
         const Mesh input = read_mesh(options.input);
         const RemeshResult result =
             remesh(input, options.params, options.quiet ? ProgressCallback() : ProgressCallback(print_progress));

@@ -92,6 +92,8 @@ TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
     const std::string in = sphere_off(), out = (dir / "o.stl").string();
     const fs::path garbage = dir / "garbage.stl";
     std::ofstream(garbage) << "this is not\na mesh at all\n";
+    const fs::path folder = dir / "folder.stl"; // a directory with a mesh's name
+    fs::create_directories(folder);
     const std::vector<std::pair<std::string, std::string>> cases = {
         {(dir / "missing.stl").string() + " " + out, "missing.stl"},
         {garbage.string() + " " + out, "garbage.stl"},
@@ -103,6 +105,10 @@ TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
         {in + " " + out + " --vertices 100 --edge-length 0.1", "--edge-length"},
         {in + " " + out + " --eta -1", "eta"},
         {in, "input and an output"},
+        // Refused before the work (no stage is printed), not after it.
+        {in + " " + (dir / "no_such_dir" / "o.stl").string(), "no_such_dir"},
+        {in + " " + out + " --report " + (dir / "no_such_dir" / "r.json").string(), "no_such_dir"},
+        {in + " " + folder.string(), "is a directory"},
     };
     for (const auto& [args, named] : cases) {
         const CliRun r = run(args);
