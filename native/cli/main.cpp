@@ -38,8 +38,8 @@ bool print_progress(const Progress& p) {
 }
 
 // Refuses, before the work, a file the run could not write at its end: one in a directory that
-// does not exist or cannot be written to, or a name that is a directory. Without this, a long run
-// was lost at its last step.
+// does not exist or cannot be written to, a read-only file, or a name that is a directory.
+// Without this, a long run was lost at its last step.
 void check_writable(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code error;
@@ -50,6 +50,8 @@ void check_writable(const std::string& path) {
         throw InvalidInput("cannot write '" + path + "': no directory '" + directory.string() + "'");
     if (::access(directory.c_str(), W_OK) != 0)
         throw InvalidInput("cannot write '" + path + "': directory '" + directory.string() + "' is not writable");
+    if (fs::exists(target, error) && ::access(target.c_str(), W_OK) != 0)
+        throw InvalidInput("cannot write '" + path + "': the file is read-only");
 }
 
 } // namespace

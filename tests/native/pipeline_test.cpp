@@ -157,6 +157,10 @@ TEST(Remesh, TheThreadCountHoldsInEveryStageAndIsGivenBack) {
     remesh(test::make_icosphere(2), p, progress);
     EXPECT_GE(stages.size(), 6u); // prepare, normals, optimize, rdt, repair, quality
     EXPECT_EQ(omp_get_max_threads(), before);
+    // Given back on the way out through an exception too.
+    const ProgressCallback cancel = [](const Progress& info) { return info.stage != "repair"; };
+    EXPECT_THROW(remesh(test::make_icosphere(2), p, cancel), Cancelled);
+    EXPECT_EQ(omp_get_max_threads(), before);
 }
 
 // The acceptance criteria of the core on real CAD STL exports (../shared/meshes), at 6000
