@@ -4,6 +4,7 @@
 #include "liftremesh/exceptions.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -133,35 +134,39 @@ private:
     CompressedRows fans_;         // vertex -> its triangles
 };
 
-} // namespace
-
-namespace {
 // The distance part of the rule: the new diagonal's midpoint no farther from the input than the
 // old one's, or within half the tolerance.
 bool keeps_surface(double before, double after, double tolerance) { return after <= std::max(0.5 * tolerance, before); }
 
-// Largest distance from the input of seven points of the triangle: its centroid, its edges'
-// midpoints and the points halfway from the centroid to its corners (the corners themselves
-// are vertices of the output, put on the input).
-double distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+// Seven points of the triangle, its centroid first, then its edges' midpoints and the points
+// halfway from the centroid to its corners (the corners themselves are vertices of the output,
+// put on the input).
+std::array<Eigen::Vector3d, 7> probe_points(const EditableMesh& mesh, const EditableMesh::Tri& t) {
     const Eigen::Vector3d& a = mesh.points[t[0]];
     const Eigen::Vector3d& b = mesh.points[t[1]];
     const Eigen::Vector3d& c = mesh.points[t[2]];
     const Eigen::Vector3d g = (a + b + c) / 3.0;
-    double d2 = 0.0;
-    for (const Eigen::Vector3d& p : {g, Eigen::Vector3d(0.5 * (a + b)), Eigen::Vector3d(0.5 * (b + c)),
-                                     Eigen::Vector3d(0.5 * (c + a)), Eigen::Vector3d(0.5 * (g + a)),
-                                     Eigen::Vector3d(0.5 * (g + b)), Eigen::Vector3d(0.5 * (g + c))})
-        d2 = std::max(d2, input.closest(p).squared_distance);
-    return std::sqrt(d2);
+    return {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), 0.5 * (g + a), 0.5 * (g + b), 0.5 * (g + c)};
+}
+
+// The largest of `d2` and the squared distances from the input of points[first, 7).
+double farthest_squared(const std::array<Eigen::Vector3d, 7>& points, size_t first, double d2, const AabbTree& input) {
+    for (size_t i = first; i < points.size(); ++i) d2 = std::max(d2, input.closest(points[i]).squared_distance);
+    return d2;
+}
+
+// Largest distance from the input of the triangle's seven probe points.
+double distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
 }
 
 // Within `tolerance` of the input (distance_from_input), its normal within 30 degrees of the
-// input's triangle nearest to its centroid.
+// input's triangle nearest to its centroid (whose query serves both).
 bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input, double tolerance) {
-    const ClosestPoint near = input.closest((mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0);
+    const std::array<Eigen::Vector3d, 7> points = probe_points(mesh, t);
+    const ClosestPoint near = input.closest(points[0]);
     return near.triangle >= 0 && EditableMesh::turns_little(mesh.normal(t), input.triangle_normal(near.triangle)) &&
-           distance_from_input(mesh, t, input) <= tolerance;
+           std::sqrt(farthest_squared(points, 1, near.squared_distance, input)) <= tolerance;
 }
 } // namespace
 
