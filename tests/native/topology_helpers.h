@@ -104,10 +104,7 @@ inline double min_kappa(const Mesh& m, Eigen::Index first = 0) {
 //! directions (0 where the surface is flat, 180 where it folds back onto itself).
 inline double largest_dihedral_deg(const Mesh& m) {
     std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge; // directed edge -> its triangle
-    auto normal = [&](Eigen::Index f) {
-        const Eigen::Vector3d a = corner(m, f, 0), b = corner(m, f, 1), c = corner(m, f, 2);
-        return Eigen::Vector3d((b - a).cross(c - a).normalized());
-    };
+    auto normal = [&](Eigen::Index f) { return triangle_normal(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2)); };
     for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
         for (int j = 0; j < 3; ++j) by_edge[{m.triangles(f, j), m.triangles(f, (j + 1) % 3)}] = f;
     double largest = 0.0;
