@@ -56,6 +56,23 @@ double distance_to_nearest_vertex(const Mesh& m, const Eigen::Vector3d& x) {
     return (m.points.rowwise() - x.transpose()).rowwise().norm().minCoeff();
 }
 
+// The unit triangle with an angle of `degrees` at the origin, between the x axis and the
+// direction at `degrees` from it; its other corners are (1, 0) and that direction's unit point.
+Mesh acute_triangle(double degrees) {
+    const double a = degrees * M_PI / 180.0;
+    return test::make_mesh({{0, 0, 0}, {1, 0, 0}, {std::cos(a), std::sin(a), 0}}, {{0, 1, 2}});
+}
+
+// The part of acute_triangle(degrees) at distances d to 2 d from the origin, as two triangles:
+// an output whose boundary cuts the acute corner off, with no vertex within reach of it.
+Mesh wedge_strip(double degrees, double d) {
+    const double a = degrees * M_PI / 180.0;
+    const Eigen::Vector3d u(std::cos(a), std::sin(a), 0);
+    const Eigen::Vector3d a1(d, 0, 0), a2(2 * d, 0, 0), b1 = d * u, b2 = 2 * d * u;
+    return test::make_mesh({{a1.x(), a1.y(), 0}, {a2.x(), a2.y(), 0}, {b2.x(), b2.y(), 0}, {b1.x(), b1.y(), 0}},
+                           {{0, 1, 2}, {0, 2, 3}});
+}
+
 RemeshParams params_with(int vertices) {
     RemeshParams p;
     p.target_vertices = vertices;
@@ -139,6 +156,39 @@ TEST(BoundarySnap, AMoveThatWouldCollapseATriangleIsRefused) {
     EXPECT_EQ(test::facing_inward(moved, Eigen::Vector3d(0, 0, -1)), 0);
 }
 
+TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
+    // The strip's nearest vertices are d = 0.1 from the corner; its boundary edges are 0.1 and
+    // 0.035 long: no vertex is within reach.
+    const Mesh input = acute_triangle(20);
+    Mesh output = wedge_strip(20, 0.1);
+    const Mesh before = output;
+    const BoundarySnapStats s = snap_boundary(output, input);
+    EXPECT_EQ(s.input_corners, 3);
+    EXPECT_EQ(s.corners_matched, 0);
+    EXPECT_EQ(s.corners_inserted, 1);
+    ASSERT_EQ(output.points.rows(), before.points.rows() + 1);
+    ASSERT_EQ(output.triangles.rows(), before.triangles.rows() + 1);
+    EXPECT_EQ(output.points.row(4), Eigen::RowVector3d(0, 0, 0)); // exactly the corner
+    const test::Topology t = test::topology(output);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, test::topology(before).chi);
+    EXPECT_EQ(boundary_edges_of(output).size(), boundary_edges_of(before).size() + 1);
+    EXPECT_EQ(test::facing_inward(output, Eigen::Vector3d(0, 0, -1)), 0); // facing +z as the strip
+    const Eigen::Index ear = output.triangles.rows() - 1;
+    EXPECT_NEAR(triangle_kappa(corner(output, ear, 0), corner(output, ear, 1), corner(output, ear, 2)), 0.574, 0.001); // the isosceles triangle of 20 degrees
+
+    // At 10 degrees the only triangle has kappa 0.318: made above half the default floor, not
+    // above half of 0.7.
+    Mesh sharp = wedge_strip(10, 0.1);
+    EXPECT_EQ(snap_boundary(sharp, acute_triangle(10)).corners_inserted, 1);
+    BoundarySnapOptions strict;
+    strict.min_kappa = 0.7;
+    Mesh kept = wedge_strip(10, 0.1);
+    EXPECT_EQ(snap_boundary(kept, acute_triangle(10), strict).corners_inserted, 0);
+    EXPECT_EQ(kept.points, wedge_strip(10, 0.1).points);
+    EXPECT_EQ(kept.triangles, wedge_strip(10, 0.1).triangles);
+}
+
 TEST(BoundarySnap, BadOptionsAreRejected) {
     const Mesh square = test::make_square(1.0, 2);
     Mesh output = square;
@@ -185,6 +235,30 @@ TEST(RemeshOpenSurface, SquareKeepsItsCorners) {
         EXPECT_LT(distance_to_nearest_vertex(r.mesh, c), 1e-9) << c.transpose();
     EXPECT_GE(r.report.output.kappa_min, 0.3);
     EXPECT_LE(r.report.hausdorff_relative, 0.005);
+}
+
+// Flat triangles with one acute corner. The cells near a corner of 30 degrees or less have
+// their centroids about 3 edge lengths from it, beyond the snap's reach: without step 3 of
+// snap_boundary() the output cut the corner off (20 degrees at 2000 vertices: the nearest
+// vertex 0.03 away, Hausdorff distance 2.8%).
+TEST(RemeshOpenSurface, AcuteCornersKeepAVertex) {
+    for (const double degrees : {15.0, 20.0, 30.0})
+        for (const int vertices : {300, 2000}) {
+            SCOPED_TRACE(testing::Message() << degrees << " degrees, " << vertices << " vertices");
+            const Mesh input = acute_triangle(degrees);
+            const RemeshResult r = remesh(input, params_with(vertices));
+            const test::Topology t = test::topology(r.mesh);
+            EXPECT_TRUE(t.oriented_manifold());
+            EXPECT_EQ(t.chi, 1);
+            EXPECT_EQ(r.report.output.boundary_loops, 1);
+            EXPECT_EQ(test::facing_inward(r.mesh, Eigen::Vector3d(0, 0, -1)), 0);
+            for (Eigen::Index v = 0; v < 3; ++v)
+                EXPECT_LT(distance_to_nearest_vertex(r.mesh, input.points.row(v).transpose()), 1e-12) << v;
+            EXPECT_GE(r.report.vertices_inserted, 1);
+            // A triangle with a 15-degree angle has kappa 0.45 at best (Eq. 26), 0.57 with 20 degrees.
+            EXPECT_GE(r.report.output.kappa_min, degrees < 20.0 ? 0.35 : 0.4);
+            EXPECT_LE(r.report.hausdorff_relative, 0.005);
+        }
 }
 
 TEST(RemeshOpenSurface, TubeEndsStayOnTheTubesRims) {

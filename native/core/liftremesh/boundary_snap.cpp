@@ -192,9 +192,13 @@ private:
 
 // The boundary vertices of the output with what the moves need to know about them.
 struct OutputBoundary {
+    struct DirectedEdge {
+        int32_t a, b, triangle; // the boundary edge a -> b, as its triangle runs it
+    };
     std::vector<int32_t> vertices;         // increasing index
     std::vector<double> reach;             // per vertex: options.reach x mean length of its boundary edges
     std::vector<Eigen::Vector3d> outward;  // per vertex: see below
+    std::vector<DirectedEdge> directed;    // the boundary edges with their triangles
     double max_reach = 0.0, mean_edge = 0.0;
 
     OutputBoundary(const Mesh& output, double reach_factor) {
@@ -236,12 +240,18 @@ struct OutputBoundary {
                 if (slot[a] < 0 || slot[b] < 0 || !is_boundary.count(edge_key(a, b))) continue;
                 const Eigen::Vector3d n =
                     triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
+                directed.push_back({a, b, static_cast<int32_t>(f)});
                 const Eigen::Vector3d out = (position(output, b) - position(output, a)).cross(n);
                 const double length = out.norm();
                 if (!(length > 0.0)) continue;
                 outward[slot[a]] += out / length;
                 outward[slot[b]] += out / length;
             }
+    }
+
+    //! The index of output vertex v in `vertices` (v must be a boundary vertex).
+    size_t slot(int32_t v) const {
+        return static_cast<size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
     }
 
     //! Whether moving vertex i from `from` to `to` goes out of the output, towards input it does
@@ -251,9 +261,75 @@ struct OutputBoundary {
     }
 };
 
+// Step 3 of snap_boundary(): the corners step 1 could not match, with no output boundary vertex
+// within reach, get a vertex of their own (see snap_boundary()). Returns how many.
+long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& corners,
+                    const OutputBoundary& boundary, double min_kappa) {
+    long made = 0;
+    if (corners.empty()) return made;
+    // A corner farther than this many reaches from the edge is not one the output cut off
+    // but one it does not have (a part lost at a coarse size): left alone, as in step 2.
+    constexpr double kEarReach = 6.0;
+    // The new triangle's angle at the corner is about the corner's: with 20 degrees its kappa
+    // is 0.57 at best (isosceles), with 10 degrees 0.32. Accepted down to half the quality
+    // floor (0.15 by default: the isosceles triangle of 4.5 degrees), below which the corner
+    // stays cut.
+    const double min_ear_kappa = 0.5 * min_kappa;
+    LiftedPoints at(static_cast<Eigen::Index>(boundary.vertices.size()), 3);
+    for (size_t i = 0; i < boundary.vertices.size(); ++i)
+        at.row(static_cast<Eigen::Index>(i)) = output.points.row(boundary.vertices[i]);
+    const KdTree tree(at);
+    std::vector<std::pair<int32_t, int32_t>> pairs; // (slot of an end, directed edge)
+    for (size_t e = 0; e < boundary.directed.size(); ++e)
+        for (int32_t v : {boundary.directed[e].a, boundary.directed[e].b})
+            pairs.emplace_back(static_cast<int32_t>(boundary.slot(v)), static_cast<int32_t>(e));
+    const CompressedRows edges_at = compress_rows(static_cast<long>(boundary.vertices.size()), pairs);
+    std::vector<char> used(boundary.directed.size(), 0); // one new triangle per edge
+    std::vector<int32_t> found;
+    for (const Corner& c : corners) {
+        const Eigen::Vector3d p = position(input, c.vertex);
+        found.clear();
+        tree.within(p.data(), kEarReach * boundary.max_reach, found);
+        // A vertex in reach that step 1 could not move (it would spoil a triangle): the corner
+        // is cut by less than an edge length, and stays so.
+        if (std::any_of(found.begin(), found.end(),
+                        [&](int32_t i) { return (at.row(i).transpose() - p).norm() <= boundary.reach[i]; }))
+            continue;
+        int32_t best_edge = -1;
+        double best_kappa = min_ear_kappa;
+        for (int32_t i : found)
+            for (const int32_t* e = edges_at.begin(i); e != edges_at.end(i); ++e) {
+                const auto& [a, b, f] = boundary.directed[*e];
+                const Eigen::Vector3d pa = position(output, a), pb = position(output, b);
+                const Eigen::Vector3d n = triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
+                const double edge_reach = 0.5 * (boundary.reach[boundary.slot(a)] + boundary.reach[boundary.slot(b)]);
+                if (used[*e] || (pb - pa).cross(n).dot(p - pa) <= 0.0 || // the corner beyond the edge
+                    (closest_point_on_segment(p, pa, pb) - p).norm() > kEarReach * edge_reach ||
+                    triangle_normal(pb, pa, p).dot(n) <= 0.0) // the new triangle not turned over
+                    continue;
+                const double kappa = triangle_kappa(pb, pa, p); // Eq. 26
+                if (kappa > best_kappa) {
+                    best_kappa = kappa;
+                    best_edge = *e;
+                }
+            }
+        if (best_edge < 0) continue;
+        const OutputBoundary::DirectedEdge& edge = boundary.directed[best_edge];
+        const auto v = static_cast<int32_t>(output.points.rows());
+        output.points.conservativeResize(v + 1, Eigen::NoChange);
+        output.points.row(v) = p.transpose();
+        output.triangles.conservativeResize(output.triangles.rows() + 1, Eigen::NoChange);
+        output.triangles.row(output.triangles.rows() - 1) << edge.b, edge.a, v; // runs b -> a, as its neighbour does not
+        used[best_edge] = 1;
+        ++made;
+    }
+    return made;
+}
+
 // Step 1 of snap_boundary(): each corner, sharpest first, onto the nearest free output boundary
-// vertex within reach that can go there. Marks the vertices used in `placed`; returns how many.
-long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner> corners, const OutputBoundary& boundary,
+// vertex within reach that can go there. Marks the vertices used in `placed`, leaves in `corners`
+// those not matched (sharpest first); returns how many were.
+long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner>& corners, const OutputBoundary& boundary,
                    VertexMover& mover, std::vector<char>& placed) {
     std::stable_sort(corners.begin(), corners.end(),
                      [](const Corner& x, const Corner& y) { return x.turn_deg > y.turn_deg; });
@@ -265,6 +341,7 @@ long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner> co
     long matched = 0;
     std::vector<int32_t> found;
     std::vector<std::pair<double, int32_t>> candidates;
+    std::vector<Corner> unmatched;
     for (const Corner& c : corners) {
         const Eigen::Vector3d p = position(input, c.vertex);
         found.clear();
@@ -277,13 +354,16 @@ long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner> co
                 candidates.emplace_back(d, i);
         }
         std::sort(candidates.begin(), candidates.end());
-        for (const auto& [d, i] : candidates)
-            if (mover.try_move(boundary.vertices[i], p)) {
-                placed[i] = 1;
-                ++matched;
-                break;
-            }
+        const auto taken = std::find_if(candidates.begin(), candidates.end(),
+                                        [&](const auto& d_i) { return mover.try_move(boundary.vertices[d_i.second], p); });
+        if (taken == candidates.end()) {
+            unmatched.push_back(c);
+            continue;
+        }
+        placed[taken->second] = 1;
+        ++matched;
     }
+    corners = std::move(unmatched);
     return matched;
 }
 
@@ -335,6 +415,11 @@ BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundaryS
         else
             ++stats.moves_refused;
     }
+
+    // Step 3: the corners step 1 left, each given a vertex of its own where the boundary, as the
+    // moves left it, passes it by.
+    if (!corners.empty())
+        stats.corners_inserted = insert_corners(output, input, corners, OutputBoundary(output, options.reach), options.min_kappa);
     return stats;
 }
 

@@ -38,6 +38,8 @@ struct BoundarySnapOptions {
 struct BoundarySnapStats {
     long input_corners = 0;    //!< corners of the input's boundary (boundary_corners())
     long corners_matched = 0;  //!< of them, those an output vertex was moved onto
+    long corners_inserted = 0; //!< of them, those given a vertex of their own (step 3 of
+                               //!< snap_boundary()), appended to output.points with a triangle each
     long vertices_snapped = 0; //!< other output boundary vertices moved onto the input's boundary
     long moves_refused = 0;    //!< other output boundary vertices in reach left where they were
                                //!< because their move would spoil a triangle (see snap_boundary())
@@ -59,17 +61,27 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //!     is allowed (below), and that vertex goes exactly onto the corner;
 //!  2. every other output boundary vertex goes to its nearest point on the input's boundary
 //!     edges (exact, closest_point_on_segment()), if that point is within reach;
-//!  3. a move is allowed only if it goes out of the output (along the sum of the outward
-//!     normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
-//!     inside its cell, so the input's boundary lies beyond the output's) and leaves every
-//!     triangle around the vertex unflipped, with at least options.min_area_ratio of its area
-//!     and a kappa of at least min(options.min_kappa, its kappa before). Moves are made one at
-//!     a time, corners first then by vertex index, each checked against the triangles as the
-//!     moves before it left them.
-//! Only positions change: the triangles, the topology and every interior vertex stay. A closed
-//! `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts (O(#F)),
-//! one pass over the triangles and O(B log B) for the B boundary vertices and edges. Throws
-//! InvalidInput if an index is out of range or an option outside its range.
+//!  3. a corner step 1 left with no output boundary vertex within reach (an acute one: the
+//!     centroids of the cells near a 20-degree corner lie about 3 edge lengths from it) gets a
+//!     vertex of its own, exactly on it, and
+//!     one triangle joining it to the output boundary edge that makes the best such triangle
+//!     (kappa, Eq. 26) among those within 6 reaches of it, with the corner beyond them (out of
+//!     the output, in their triangle's plane) and the new triangle not turned over against
+//!     theirs. None is made if the best has a kappa below options.min_kappa / 2, as for a
+//!     corner sharper than about 4.5 degrees at the default floor (kappa 0.15).
+//! A move (steps 1 and 2) is allowed only if it goes out of the output (along the sum of the
+//! outward normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
+//! inside its cell, so the input's boundary lies beyond the output's) and leaves every triangle
+//! around the vertex unflipped, with at least options.min_area_ratio of its area and a kappa of
+//! at least min(options.min_kappa, its kappa before). Moves are made one at a time, corners
+//! first then by vertex index, each checked against the triangles as the moves before it left
+//! them.
+//! Steps 1 and 2 change positions only: the triangles, the topology and every interior vertex
+//! stay. Step 3 appends a vertex and a triangle per corner (stats.corners_inserted), which keeps
+//! the Euler characteristic and the boundary loops (one vertex, two edges and one triangle more).
+//! A closed `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts
+//! (O(#F)), one pass over the triangles and O(B log B) for the B boundary vertices and edges.
+//! Throws InvalidInput if an index is out of range or an option outside its range.
 BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {});
 
 } // namespace liftremesh

@@ -28,7 +28,8 @@ struct RemeshReport {
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
-    long vertices_inserted = 0;          //!< input points inserted where a sharp edge was cut off (hausdorff_refinement.h)
+    long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
+                                         //!< acute corner of an open boundary (boundary_snap.h) was cut off
     long edges_flipped = 0;              //!< edges flipped for triangle quality at the end (quality_polish.h)
     long vertices_moved = 0;             //!< vertex moves for triangle quality at the end (quality_polish.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
