@@ -113,6 +113,10 @@ public:
         return true;
     }
 
+    //! The triangles around the movable vertex of slot s.
+    const int32_t* begin(size_t s) const { return around_.begin(static_cast<long>(s)); }
+    const int32_t* end(size_t s) const { return around_.end(static_cast<long>(s)); }
+
 private:
     Eigen::Vector3d doubled_normal(int32_t f) const { // (b - a) x (c - a): twice the area, along the normal
         const Eigen::Vector3d a = position(mesh_, mesh_.triangles(f, 0));
@@ -199,6 +203,7 @@ struct OutputBoundary {
     std::vector<double> reach;             // per vertex: options.reach x mean length of its boundary edges
     std::vector<Eigen::Vector3d> outward;  // per vertex: see below
     std::vector<DirectedEdge> directed;    // the boundary edges with their triangles
+    std::unordered_set<std::uint64_t> is_boundary; // edge_key() of each boundary edge
     double max_reach = 0.0, mean_edge = 0.0;
 
     OutputBoundary(const Mesh& output, double reach_factor) {
@@ -231,7 +236,6 @@ struct OutputBoundary {
         // their triangles, pointing away from them. A triangle, counter-clockwise about its
         // normal n, lies left of its edge a -> b: outward is (b - a) x n.
         outward.assign(vertices.size(), Eigen::Vector3d::Zero());
-        std::unordered_set<std::uint64_t> is_boundary;
         is_boundary.reserve(2 * edges.size());
         for (const auto& [a, b] : edges) is_boundary.insert(edge_key(a, b));
         for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
@@ -249,6 +253,9 @@ struct OutputBoundary {
             }
     }
 
+    //! Whether a -> b or b -> a is a boundary edge.
+    bool has_edge(int32_t a, int32_t b) const { return is_boundary.count(edge_key(a, b)) > 0; }
+
     //! The index of output vertex v in `vertices` (v must be a boundary vertex).
     size_t slot(int32_t v) const {
         return static_cast<size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
@@ -264,12 +271,29 @@ struct OutputBoundary {
 // Step 3 of snap_boundary(): the corners step 1 could not match, with no output boundary vertex
 // within reach, get a vertex of their own (see snap_boundary()). Returns how many.
 long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& corners,
-                    const OutputBoundary& boundary, double min_kappa) {
+                    const OutputBoundary& boundary, double min_kappa, const AabbTree* input_tree) {
     long made = 0;
     if (corners.empty()) return made;
+    std::unique_ptr<AabbTree> own_tree;
+    if (!input_tree) input_tree = (own_tree = std::make_unique<AabbTree>(input)).get();
+    // The new triangle on the input, within `tolerance`, at the points of a barycentric grid
+    // of step 1/4 (its corners aside, which are the output's and the input's).
+    auto on_input = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double tolerance) {
+        for (int i = 0; i <= 4; ++i)
+            for (int j = 0; i + j <= 4; ++j) {
+                if (i == 4 || j == 4 || i + j == 0) continue;
+                const Eigen::Vector3d q = (i * a + j * b + (4 - i - j) * c) / 4.0;
+                if (input_tree->any_within(q, tolerance) < 0) return false;
+            }
+        return true;
+    };
     // A corner farther than this many reaches from the edge is not one the output cut off
     // but one it does not have (a part lost at a coarse size): left alone, as in step 2.
     constexpr double kEarReach = 6.0;
+    // The new triangle must lie this close to the input, in reaches (about edge lengths): the
+    // tolerance of the crease-point insertion (hausdorff_refinement.h), as for a chord of a
+    // curved border. Farther, it would bridge a gap to another part or a fold.
+    constexpr double kOnInput = 0.15;
     // The new triangle's angle at the corner is about the corner's: with 20 degrees its kappa
     // is 0.57 at best (isosceles), with 10 degrees 0.32. Accepted down to half the quality
     // floor (0.15 by default: the isosceles triangle of 4.5 degrees), below which the corner
@@ -308,7 +332,7 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
                     triangle_normal(pb, pa, p).dot(n) <= 0.0) // the new triangle not turned over
                     continue;
                 const double kappa = triangle_kappa(pb, pa, p); // Eq. 26
-                if (kappa > best_kappa) {
+                if (kappa > best_kappa && on_input(pb, pa, p, kOnInput * edge_reach)) {
                     best_kappa = kappa;
                     best_edge = *e;
                 }
@@ -379,7 +403,8 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg) {
     return out;
 }
 
-BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options) {
+BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options,
+                                const AabbTree* input_tree) {
     check_options(options);
     check_indices(input, "snap_boundary input");
     check_indices(output, "snap_boundary output");
@@ -404,22 +429,55 @@ BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundaryS
         input_length / (8.0 * static_cast<double>(input_edges.size() + boundary.vertices.size())));
     if (!(spacing > 0.0)) return stats; // all boundary edges have zero length: no direction to go
     const SegmentSearch search(input, input_edges, spacing);
+    std::vector<size_t> beyond; // slots of the vertices whose nearest boundary point lies inward
+    const double on_boundary = 1e-9 * boundary.mean_edge; // distances below this are rounding
     for (size_t i = 0; i < boundary.vertices.size(); ++i) {
         if (placed[i]) continue;
         const Eigen::Vector3d q = position(output, boundary.vertices[i]);
         Eigen::Vector3d target = q;
-        if (!search.nearest_within(q, boundary.reach[i], target) || target == q || !boundary.goes_out(i, q, target))
+        if (!search.nearest_within(q, boundary.reach[i], target) || target == q) continue;
+        if (!boundary.goes_out(i, q, target)) {
+            if ((target - q).norm() > on_boundary) beyond.push_back(i); // not a rounding error
             continue;
+        }
         if (mover.try_move(boundary.vertices[i], target))
             ++stats.vertices_snapped;
         else
             ++stats.moves_refused;
     }
 
+    // Flaps: a vertex beyond the input's boundary (its nearest point there lies back inside the
+    // output) in a single triangle whose other two vertices now lie on that boundary. Its site
+    // sat outside the surface, with a cell too small to pull it in. The triangle covers no
+    // input and goes; its opposite edge, on the boundary, becomes the boundary.
+    std::vector<char> drop(static_cast<size_t>(output.triangles.rows()), 0);
+    Eigen::Vector3d unused;
+    for (size_t i : beyond) {
+        if (mover.end(i) - mover.begin(i) != 1) continue;
+        const int32_t f = *mover.begin(i), v = boundary.vertices[i];
+        int j = 0;
+        while (output.triangles(f, j) != v) ++j;
+        const int32_t x = output.triangles(f, (j + 1) % 3), y = output.triangles(f, (j + 2) % 3);
+        if (boundary.has_edge(x, y)) continue; // attached by its corners only: removing it would cut the surface
+        if (search.nearest_within(position(output, x), on_boundary, unused) &&
+            search.nearest_within(position(output, y), on_boundary, unused)) {
+            drop[f] = 1;
+            ++stats.flaps_removed;
+        }
+    }
+    if (stats.flaps_removed > 0) {
+        Eigen::Index kept = 0;
+        for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
+            if (!drop[f]) output.triangles.row(kept++) = output.triangles.row(f);
+        output.triangles.conservativeResize(kept, Eigen::NoChange);
+        remove_unreferenced_vertices(output);
+    }
+
     // Step 3: the corners step 1 left, each given a vertex of its own where the boundary, as the
     // moves left it, passes it by.
     if (!corners.empty())
-        stats.corners_inserted = insert_corners(output, input, corners, OutputBoundary(output, options.reach), options.min_kappa);
+        stats.corners_inserted =
+            insert_corners(output, input, corners, OutputBoundary(output, options.reach), options.min_kappa, input_tree);
     return stats;
 }
 

@@ -5,6 +5,7 @@
 // input's and cuts its corners off. Closed inputs are left untouched.
 #pragma once
 
+#include "liftremesh/aabb_tree.h"
 #include "liftremesh/mesh.h"
 
 #include <cstdint>
@@ -43,6 +44,8 @@ struct BoundarySnapStats {
     long vertices_snapped = 0; //!< other output boundary vertices moved onto the input's boundary
     long moves_refused = 0;    //!< other output boundary vertices in reach left where they were
                                //!< because their move would spoil a triangle (see snap_boundary())
+    long flaps_removed = 0;    //!< triangles removed beyond the input's boundary (step 2b of
+                               //!< snap_boundary()), each with its apex
     long moved() const { return corners_matched + vertices_snapped; }
 };
 
@@ -61,13 +64,19 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //!     is allowed (below), and that vertex goes exactly onto the corner;
 //!  2. every other output boundary vertex goes to its nearest point on the input's boundary
 //!     edges (exact, closest_point_on_segment()), if that point is within reach;
+//!  2b. a flap is removed: a triangle whose apex lies beyond the input's boundary (its nearest
+//!     point there within reach but back inside the output) and in no other triangle, whose
+//!     other two vertices lie on that boundary (within 1e-9 of the mean output boundary edge)
+//!     after step 2, and whose edge between them has a triangle on its other side. Its site sat outside the surface with a cell too small to pull it in; the
+//!     triangle covers no input, and the edge opposite the apex becomes boundary;
 //!  3. a corner step 1 left with no output boundary vertex within reach (an acute one: the
 //!     centroids of the cells near a 20-degree corner lie about 3 edge lengths from it) gets a
 //!     vertex of its own, exactly on it, and
 //!     one triangle joining it to the output boundary edge that makes the best such triangle
 //!     (kappa, Eq. 26) among those within 6 reaches of it, with the corner beyond them (out of
-//!     the output, in their triangle's plane) and the new triangle not turned over against
-//!     theirs. None is made if the best has a kappa below options.min_kappa / 2, as for a
+//!     the output, in their triangle's plane), the new triangle not turned over against theirs
+//!     and lying on the input (its centroid and the middles of its two new edges within a
+//!     quarter of the edge's reach of it: not across a gap to another part). None is made if the best has a kappa below options.min_kappa / 2, as for a
 //!     corner sharper than about 4.5 degrees at the default floor (kappa 0.15).
 //! A move (steps 1 and 2) is allowed only if it goes out of the output (along the sum of the
 //! outward normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
@@ -77,11 +86,16 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //! first then by vertex index, each checked against the triangles as the moves before it left
 //! them.
 //! Steps 1 and 2 change positions only: the triangles, the topology and every interior vertex
-//! stay. Step 3 appends a vertex and a triangle per corner (stats.corners_inserted), which keeps
-//! the Euler characteristic and the boundary loops (one vertex, two edges and one triangle more).
+//! stay. Step 2b removes a triangle and its apex per flap (stats.flaps_removed; the vertices are
+//! then renumbered, remove_unreferenced_vertices()), step 3 appends a vertex and a triangle per
+//! corner (stats.corners_inserted): both keep the Euler characteristic and the boundary loops
+//! (one vertex, two edges and one triangle fewer or more).
 //! A closed `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts
 //! (O(#F)), one pass over the triangles and O(B log B) for the B boundary vertices and edges.
 //! Throws InvalidInput if an index is out of range or an option outside its range.
-BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {});
+//! `input_tree`, if given, is AabbTree(input) (step 3 measures distances to the input), which
+//! is built here otherwise when a corner needs it.
+BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {},
+                                const AabbTree* input_tree = nullptr);
 
 } // namespace liftremesh

@@ -163,8 +163,10 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     undo_transform(to_unit, out.points);
     // After the collapse, which may keep an interior end point of an edge at the boundary, and in
     // the input's coordinates, so that snapped corners are exactly the input's.
-    const BoundarySnapStats snapped = snap_boundary(out, input);
+    const AabbTree input_tree(input);
+    const BoundarySnapStats snapped = snap_boundary(out, input, {}, &input_tree);
     report.boundary_vertices_snapped = snapped.moved();
+    report.triangles_removed += snapped.flaps_removed;
     // Sharp edges cut off by a chamfer (edge crunching, Section 6.2.2) get their crease points;
     // after the snap, so that an open input's boundary, where the output now lies, is no witness.
     HausdorffRefinementParams towards_input;
@@ -172,7 +174,6 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
     towards_input.max_distance = spacing * to_unit.scale;
     towards_input.max_inserted = sites_wanted / 100;
-    const AabbTree input_tree(input);
     report.vertices_inserted =
         snapped.corners_inserted + refine_towards_input(out, input, towards_input, &input_tree).inserted;
     // The worst triangles raised by flips and vertex moves that keep the surface on the input.

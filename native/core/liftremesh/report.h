@@ -26,7 +26,8 @@ struct RemeshReport {
     double energy_final = 0.0;           //!< objective at the last iterate (its phase's sigma)
     long sites_split = 0;                //!< sites whose restricted cell came in pieces, a vertex each (rdt.h)
     long holes_filled = 0;
-    long triangles_removed = 0;          //!< by the manifold repair
+    long triangles_removed = 0;          //!< by the manifold repair (repair.h), and flaps beyond an open
+                                         //!< input's boundary (boundary_snap.h)
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
