@@ -188,6 +188,20 @@ TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
     EXPECT_EQ(snap_boundary(kept, acute_triangle(10), strict).corners_inserted, 0);
     EXPECT_EQ(kept.points, wedge_strip(10, 0.1).points);
     EXPECT_EQ(kept.triangles, wedge_strip(10, 0.1).triangles);
+
+    // An input made of the strip and, apart from it, the tip of the wedge up to 0.03 from the
+    // corner: a triangle to the corner would bridge the gap between 0.03 and 0.1, off the input.
+    const double a = 20 * M_PI / 180.0;
+    const Mesh strip = wedge_strip(20, 0.1);
+    Mesh parts = strip;
+    parts.points.conservativeResize(7, Eigen::NoChange);
+    parts.points.bottomRows(3) << 0, 0, 0, 0.03, 0, 0, 0.03 * std::cos(a), 0.03 * std::sin(a), 0;
+    parts.triangles.conservativeResize(3, Eigen::NoChange);
+    parts.triangles.row(2) << 4, 5, 6;
+    Mesh apart = strip;
+    EXPECT_EQ(snap_boundary(apart, parts).corners_inserted, 0);
+    EXPECT_EQ(apart.points, strip.points);
+    EXPECT_EQ(apart.triangles, strip.triangles);
 }
 
 TEST(BoundarySnap, AFlapBeyondTheBoundaryIsRemoved) {
