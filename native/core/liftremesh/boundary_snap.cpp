@@ -268,6 +268,38 @@ struct OutputBoundary {
     }
 };
 
+// Step 2b of snap_boundary(): removes the flaps among the vertices `beyond` (slots of those whose
+// nearest point on the input's boundary lies back inside the output): a vertex in a single
+// triangle whose other two vertices now lie on the input's boundary (within `on_boundary`) and
+// whose edge between them has a triangle on its other side. Its site sat outside the surface,
+// with a cell too small to pull it in; the triangle covers no input. Returns how many.
+long remove_flaps(Mesh& output, const OutputBoundary& boundary, const VertexMover& mover, const SegmentSearch& search,
+                  const std::vector<size_t>& beyond, double on_boundary) {
+    std::vector<char> drop(static_cast<size_t>(output.triangles.rows()), 0);
+    long removed = 0;
+    Eigen::Vector3d unused;
+    for (size_t i : beyond) {
+        if (mover.end(i) - mover.begin(i) != 1) continue;
+        const int32_t f = *mover.begin(i), v = boundary.vertices[i];
+        int j = 0;
+        while (output.triangles(f, j) != v) ++j;
+        const int32_t x = output.triangles(f, (j + 1) % 3), y = output.triangles(f, (j + 2) % 3);
+        if (boundary.has_edge(x, y)) continue; // held by its corners only: removing it would cut the surface
+        if (search.nearest_within(position(output, x), on_boundary, unused) &&
+            search.nearest_within(position(output, y), on_boundary, unused)) {
+            drop[f] = 1;
+            ++removed;
+        }
+    }
+    if (removed == 0) return 0;
+    Eigen::Index kept = 0;
+    for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
+        if (!drop[f]) output.triangles.row(kept++) = output.triangles.row(f);
+    output.triangles.conservativeResize(kept, Eigen::NoChange);
+    remove_unreferenced_vertices(output);
+    return removed;
+}
+
 // Step 3 of snap_boundary(): the corners step 1 could not match, with no output boundary vertex
 // within reach, get a vertex of their own (see snap_boundary()). Returns how many.
 long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& corners,
@@ -314,8 +346,8 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
         const Eigen::Vector3d p = position(input, c.vertex);
         found.clear();
         tree.within(p.data(), kEarReach * boundary.max_reach, found);
-        // A vertex in reach that step 1 could not move (it would spoil a triangle): the corner
-        // is cut by less than an edge length, and stays so.
+        // A vertex within reach (one step 1 could not move, or one step 2 moved near the
+        // corner): the corner is cut by less than an edge length, and stays so.
         if (std::any_of(found.begin(), found.end(),
                         [&](int32_t i) { return (at.row(i).transpose() - p).norm() <= boundary.reach[i]; }))
             continue;
@@ -343,7 +375,7 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
         output.points.conservativeResize(v + 1, Eigen::NoChange);
         output.points.row(v) = p.transpose();
         output.triangles.conservativeResize(output.triangles.rows() + 1, Eigen::NoChange);
-        output.triangles.row(output.triangles.rows() - 1) << edge.b, edge.a, v; // runs b -> a, as its neighbour does not
+        output.triangles.row(output.triangles.rows() - 1) << edge.b, edge.a, v; // b -> a: the other way to its neighbour
         used[best_edge] = 1;
         ++made;
     }
@@ -446,32 +478,7 @@ BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundaryS
             ++stats.moves_refused;
     }
 
-    // Flaps: a vertex beyond the input's boundary (its nearest point there lies back inside the
-    // output) in a single triangle whose other two vertices now lie on that boundary. Its site
-    // sat outside the surface, with a cell too small to pull it in. The triangle covers no
-    // input and goes; its opposite edge, on the boundary, becomes the boundary.
-    std::vector<char> drop(static_cast<size_t>(output.triangles.rows()), 0);
-    Eigen::Vector3d unused;
-    for (size_t i : beyond) {
-        if (mover.end(i) - mover.begin(i) != 1) continue;
-        const int32_t f = *mover.begin(i), v = boundary.vertices[i];
-        int j = 0;
-        while (output.triangles(f, j) != v) ++j;
-        const int32_t x = output.triangles(f, (j + 1) % 3), y = output.triangles(f, (j + 2) % 3);
-        if (boundary.has_edge(x, y)) continue; // attached by its corners only: removing it would cut the surface
-        if (search.nearest_within(position(output, x), on_boundary, unused) &&
-            search.nearest_within(position(output, y), on_boundary, unused)) {
-            drop[f] = 1;
-            ++stats.flaps_removed;
-        }
-    }
-    if (stats.flaps_removed > 0) {
-        Eigen::Index kept = 0;
-        for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
-            if (!drop[f]) output.triangles.row(kept++) = output.triangles.row(f);
-        output.triangles.conservativeResize(kept, Eigen::NoChange);
-        remove_unreferenced_vertices(output);
-    }
+    stats.flaps_removed = remove_flaps(output, boundary, mover, search, beyond, on_boundary);
 
     // Step 3: the corners step 1 left, each given a vertex of its own where the boundary, as the
     // moves left it, passes it by.
