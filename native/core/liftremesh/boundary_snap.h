@@ -2,7 +2,9 @@
 // Delaunay triangulation places every vertex at a site, i.e. at (near) the centroid of its
 // restricted Voronoi cell; a cell that touches the input's boundary has its centroid inside it,
 // so without this step the output's boundary runs about a third of an edge length inside the
-// input's and cuts its corners off. Closed inputs are left untouched.
+// input's and cuts its corners off. Acute corners, which no output vertex is near enough to, get
+// a vertex of their own; triangles hanging beyond the boundary go. Closed inputs are left
+// untouched.
 #pragma once
 
 #include "liftremesh/aabb_tree.h"
@@ -67,17 +69,19 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //!  2b. a flap is removed: a triangle whose apex lies beyond the input's boundary (its nearest
 //!     point there within reach but back inside the output) and in no other triangle, whose
 //!     other two vertices lie on that boundary (within 1e-9 of the mean output boundary edge)
-//!     after step 2, and whose edge between them has a triangle on its other side. Its site sat outside the surface with a cell too small to pull it in; the
-//!     triangle covers no input, and the edge opposite the apex becomes boundary;
+//!     after step 2, and whose edge between them has a triangle on its other side. Its site sat
+//!     outside the surface with a cell too small to pull it in; the triangle covers no input,
+//!     and the edge opposite the apex becomes boundary;
 //!  3. a corner step 1 left with no output boundary vertex within reach (an acute one: the
 //!     centroids of the cells near a 20-degree corner lie about 3 edge lengths from it) gets a
-//!     vertex of its own, exactly on it, and
-//!     one triangle joining it to the output boundary edge that makes the best such triangle
-//!     (kappa, Eq. 26) among those within 6 reaches of it, with the corner beyond them (out of
-//!     the output, in their triangle's plane), the new triangle not turned over against theirs
-//!     and lying on the input (its centroid and the middles of its two new edges within a
-//!     quarter of the edge's reach of it: not across a gap to another part). None is made if the best has a kappa below options.min_kappa / 2, as for a
-//!     corner sharper than about 4.5 degrees at the default floor (kappa 0.15).
+//!     vertex of its own, exactly on it, and one triangle joining it to the output boundary edge
+//!     that makes the best such triangle (kappa, Eq. 26) among those within 6 reaches of it,
+//!     with the corner beyond them (out of the output, in their triangle's plane), the new
+//!     triangle not turned over against theirs, and lying on the input: within 0.15 of the
+//!     edge's reach of it at the points of a barycentric grid of step 1/4, so that it bridges
+//!     no gap to another part. None is made if the best has a kappa below
+//!     options.min_kappa / 2, as for a corner sharper than about 4.5 degrees at the default
+//!     floor (kappa 0.15).
 //! A move (steps 1 and 2) is allowed only if it goes out of the output (along the sum of the
 //! outward normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
 //! inside its cell, so the input's boundary lies beyond the output's) and leaves every triangle
@@ -91,10 +95,11 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //! corner (stats.corners_inserted): both keep the Euler characteristic and the boundary loops
 //! (one vertex, two edges and one triangle fewer or more).
 //! A closed `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts
-//! (O(#F)), one pass over the triangles and O(B log B) for the B boundary vertices and edges.
-//! Throws InvalidInput if an index is out of range or an option outside its range.
-//! `input_tree`, if given, is AabbTree(input) (step 3 measures distances to the input), which
-//! is built here otherwise when a corner needs it.
+//! (O(#F)), one pass over the triangles and O(B log B) for the B boundary vertices and edges;
+//! step 3, for each corner left, 12 distance queries per candidate triangle.
+//! `input_tree`, if given, is AabbTree(input), which step 3 queries; it is built here otherwise,
+//! when a corner is left. Throws InvalidInput if an index is out of range or an option outside
+//! its range.
 BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {},
                                 const AabbTree* input_tree = nullptr);
 
