@@ -158,8 +158,8 @@ TEST(BoundarySnap, AMoveThatWouldCollapseATriangleIsRefused) {
 }
 
 TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
-    // The strip's nearest vertices are d = 0.1 from the corner; its boundary edges are 0.1 and
-    // 0.035 long: no vertex is within reach.
+    // The strip's nearest vertices are d = 0.1 from the corner, their boundary edges 0.1 and
+    // 0.035 long: no vertex is within reach (the mean of its boundary edges).
     const Mesh input = acute_triangle(20);
     Mesh output = wedge_strip(20, 0.1);
     const Mesh before = output;
@@ -176,7 +176,8 @@ TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
     EXPECT_EQ(boundary_edges_of(output).size(), boundary_edges_of(before).size() + 1);
     EXPECT_EQ(test::facing_inward(output, Eigen::Vector3d(0, 0, -1)), 0); // facing +z as the strip
     const Eigen::Index ear = output.triangles.rows() - 1;
-    EXPECT_NEAR(triangle_kappa(corner(output, ear, 0), corner(output, ear, 1), corner(output, ear, 2)), 0.574, 0.001); // the isosceles triangle of 20 degrees
+    // The isosceles triangle of 20 degrees at the corner.
+    EXPECT_NEAR(triangle_kappa(corner(output, ear, 0), corner(output, ear, 1), corner(output, ear, 2)), 0.574, 0.001);
 
     // At 10 degrees the only triangle has kappa 0.318: made above half the default floor, not
     // above half of 0.7.
