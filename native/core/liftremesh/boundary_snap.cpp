@@ -310,7 +310,8 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
     if (!input_tree) input_tree = (own_tree = std::make_unique<AabbTree>(input)).get();
     // The new triangle on the input, within `tolerance`, at the points of a barycentric grid
     // of step 1/4 (its corners aside, which are the output's and the input's).
-    auto on_input = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double tolerance) {
+    auto on_input = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                        double tolerance) {
         for (int i = 0; i <= 4; ++i)
             for (int j = 0; i + j <= 4; ++j) {
                 if (i == 4 || j == 4 || i + j == 0) continue;
@@ -357,7 +358,8 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
             for (const int32_t* e = edges_at.begin(i); e != edges_at.end(i); ++e) {
                 const auto& [a, b, f] = boundary.directed[*e];
                 const Eigen::Vector3d pa = position(output, a), pb = position(output, b);
-                const Eigen::Vector3d n = triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
+                const Eigen::Vector3d n =
+                    triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
                 const double edge_reach = 0.5 * (boundary.reach[boundary.slot(a)] + boundary.reach[boundary.slot(b)]);
                 if (used[*e] || (pb - pa).cross(n).dot(p - pa) <= 0.0 || // the corner beyond the edge
                     (closest_point_on_segment(p, pa, pb) - p).norm() > kEarReach * edge_reach ||
@@ -375,7 +377,8 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
         output.points.conservativeResize(v + 1, Eigen::NoChange);
         output.points.row(v) = p.transpose();
         output.triangles.conservativeResize(output.triangles.rows() + 1, Eigen::NoChange);
-        output.triangles.row(output.triangles.rows() - 1) << edge.b, edge.a, v; // b -> a: the other way to its neighbour
+        // b -> a: the other way round to its neighbour.
+        output.triangles.row(output.triangles.rows() - 1) << edge.b, edge.a, v;
         used[best_edge] = 1;
         ++made;
     }
@@ -410,8 +413,9 @@ long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner>& c
                 candidates.emplace_back(d, i);
         }
         std::sort(candidates.begin(), candidates.end());
-        const auto taken = std::find_if(candidates.begin(), candidates.end(),
-                                        [&](const auto& d_i) { return mover.try_move(boundary.vertices[d_i.second], p); });
+        const auto taken = std::find_if(candidates.begin(), candidates.end(), [&](const auto& d_i) {
+            return mover.try_move(boundary.vertices[d_i.second], p);
+        });
         if (taken == candidates.end()) {
             unmatched.push_back(c);
             continue;
@@ -483,8 +487,8 @@ BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundaryS
     // Step 3: the corners step 1 left, each given a vertex of its own where the boundary, as the
     // moves left it, passes it by.
     if (!corners.empty())
-        stats.corners_inserted =
-            insert_corners(output, input, corners, OutputBoundary(output, options.reach), options.min_kappa, input_tree);
+        stats.corners_inserted = insert_corners(output, input, corners, OutputBoundary(output, options.reach),
+                                                options.min_kappa, input_tree);
     return stats;
 }
 
