@@ -253,6 +253,14 @@ struct OutputBoundary {
             }
     }
 
+    //! #vertices by 3: where the boundary vertices are in `output` now, row i for vertices[i].
+    LiftedPoints positions(const Mesh& output) const {
+        LiftedPoints at(static_cast<Eigen::Index>(vertices.size()), 3);
+        for (size_t i = 0; i < vertices.size(); ++i)
+            at.row(static_cast<Eigen::Index>(i)) = output.points.row(vertices[i]);
+        return at;
+    }
+
     //! Whether a -> b or b -> a is a boundary edge.
     bool has_edge(int32_t a, int32_t b) const { return is_boundary.count(edge_key(a, b)) > 0; }
 
@@ -332,9 +340,7 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
     // floor (0.15 by default: the isosceles triangle of 4.5 degrees), below which the corner
     // stays cut.
     const double min_ear_kappa = 0.5 * min_kappa;
-    LiftedPoints at(static_cast<Eigen::Index>(boundary.vertices.size()), 3);
-    for (size_t i = 0; i < boundary.vertices.size(); ++i)
-        at.row(static_cast<Eigen::Index>(i)) = output.points.row(boundary.vertices[i]);
+    const LiftedPoints at = boundary.positions(output);
     const KdTree tree(at);
     std::vector<std::pair<int32_t, int32_t>> pairs; // (slot of an end, directed edge)
     for (size_t e = 0; e < boundary.directed.size(); ++e)
@@ -393,9 +399,7 @@ long match_corners(const Mesh& output, const Mesh& input, std::vector<Corner>& c
     std::stable_sort(corners.begin(), corners.end(),
                      [](const Corner& x, const Corner& y) { return x.turn_deg > y.turn_deg; });
     // Positions before any move, so that every candidate is measured from where it was.
-    LiftedPoints before(static_cast<Eigen::Index>(boundary.vertices.size()), 3);
-    for (size_t i = 0; i < boundary.vertices.size(); ++i)
-        before.row(static_cast<Eigen::Index>(i)) = output.points.row(boundary.vertices[i]);
+    const LiftedPoints before = boundary.positions(output);
     const KdTree tree(before);
     long matched = 0;
     std::vector<int32_t> found;
