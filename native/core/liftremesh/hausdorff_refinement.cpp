@@ -1,6 +1,7 @@
 #include "liftremesh/hausdorff_refinement.h"
 
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/crease_snap.h"
 #include "liftremesh/editable_mesh.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
@@ -190,18 +191,12 @@ private:
     double distance_to_input(const Eigen::Vector3d& p) const { return std::sqrt(input_.closest(p).squared_distance); }
 
     bool should_flip(const EditableMesh::Quad& q) const {
-        const auto [n1, n2] = EditableMesh::flipped(q);
         const std::vector<Eigen::Vector3d>& x = mesh_.points;
         const double before = distance_to_input(0.5 * (x[q.a] + x[q.b]));
         const double after = distance_to_input(0.5 * (x[q.c] + x[q.d]));
         // The edge that cuts across a crease: the other diagonal lies on the input.
-        if (before > params_.tolerance && after < 0.5 * before) {
-            const Eigen::Vector3d mean = mesh_.normal(mesh_.tris[q.t1]).normalized() + mesh_.normal(mesh_.tris[q.t2]).normalized();
-            if (!(mean.squaredNorm() > 0.0)) return false; // a degenerate triangle (NaN) or opposite ones
-            if (mesh_.normal(n1).dot(mean) <= 0.0 || mesh_.normal(n2).dot(mean) <= 0.0) return false; // a fold
-            const double worst_before = std::min(mesh_.kappa(mesh_.tris[q.t1]), mesh_.kappa(mesh_.tris[q.t2]));
-            return std::min(mesh_.kappa(n1), mesh_.kappa(n2)) >= std::min(params_.kappa_floor, worst_before);
-        }
+        if (before > params_.tolerance && after < 0.5 * before)
+            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, params_.kappa_floor);
         return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
     }
 

@@ -1,6 +1,7 @@
 #include "liftremesh/pipeline.h"
 
 #include "liftremesh/boundary_snap.h"
+#include "liftremesh/crease_snap.h"
 #include "liftremesh/density.h"
 #include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
@@ -176,12 +177,20 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     towards_input.max_inserted = sites_wanted / 100;
     report.vertices_inserted =
         snapped.corners_inserted + refine_towards_input(out, input, towards_input, &input_tree).inserted;
+    // Knife edges, which the feature term leaves cut (crease_snap.h): after the refinement, which
+    // inserts the points of their corners and of a few places.
+    CreaseSnapParams onto_creases;
+    onto_creases.radius = 0.35 * spacing * to_unit.scale;
+    onto_creases.corner_radius = spacing * to_unit.scale;
+    onto_creases.tolerance = towards_input.tolerance;
+    onto_creases.kappa_floor = towards_input.kappa_floor;
+    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, input, input_tree, onto_creases);
     // The worst triangles raised by flips and vertex moves that keep the surface on the input.
     QualityPolishParams polish;
     polish.tolerance = towards_input.tolerance;
     const QualityPolishStats polished = polish_quality(out, input_tree, polish);
-    report.edges_flipped = polished.flipped;
-    report.vertices_moved = polished.moved;
+    report.edges_flipped = onto_crease.flipped + polished.flipped;
+    report.vertices_moved = onto_crease.moved + polished.moved;
     clock.end();
 
     clock.begin("quality");

@@ -155,12 +155,8 @@ double farthest_squared(const std::array<Eigen::Vector3d, 7>& points, size_t fir
     return d2;
 }
 
-// Largest distance from the input of the triangle's seven probe points.
-double distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
-    return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
-}
 
-// Within `tolerance` of the input (distance_from_input), its normal within 30 degrees of the
+// Within `tolerance` of the input (triangle_distance_from_input), its normal within 30 degrees of the
 // input's triangle nearest to its centroid (whose query serves both).
 bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input, double tolerance) {
     const std::array<Eigen::Vector3d, 7> points = probe_points(mesh, t);
@@ -170,12 +166,16 @@ bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const A
 }
 } // namespace
 
+double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
+}
+
 bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                           double tolerance) {
     const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
     const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
     if (!(mesh.normal(t1).dot(mesh.normal(t2)) < 0.0)) return false; // turns by 90 degrees at most
-    if (!(std::max(distance_from_input(mesh, t1, input), distance_from_input(mesh, t2, input)) > tolerance))
+    if (!(std::max(triangle_distance_from_input(mesh, t1, input), triangle_distance_from_input(mesh, t2, input)) > tolerance))
         return false; // near the input: a crease of it, followed, or a fold too small to matter
     const auto [n1, n2] = EditableMesh::flipped(quad);
     const double worse_before = std::min(mesh.kappa(t1), mesh.kappa(t2));

@@ -68,6 +68,10 @@ bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Qu
 bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                           double tolerance);
 
+//! Largest distance from the input of seven points of the triangle: its centroid, its edges'
+//! midpoints and the points halfway from the centroid to its corners.
+double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
 QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params);

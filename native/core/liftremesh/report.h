@@ -32,7 +32,7 @@ struct RemeshReport {
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
     long edges_flipped = 0;              //!< edges flipped for triangle quality at the end (quality_polish.h)
-    long vertices_moved = 0;             //!< vertex moves for triangle quality at the end (quality_polish.h)
+    long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h) and for triangle quality at the end (quality_polish.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     std::vector<StageTime> timings;
     //! What a user should know about a result that is not a faithful copy of its input, as

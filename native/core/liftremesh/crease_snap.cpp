@@ -1,0 +1,310 @@
+#include "liftremesh/crease_snap.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
+#include "liftremesh/neighbor_search.h"
+#include "liftremesh/quality_polish.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+namespace liftremesh {
+
+bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& q, double before, double after,
+                      double tolerance, double kappa_floor) {
+    if (!(before > tolerance && after < 0.5 * before)) return false;
+    const auto [n1, n2] = EditableMesh::flipped(q);
+    const Eigen::Vector3d mean = mesh.normal(mesh.tris[q.t1]).normalized() + mesh.normal(mesh.tris[q.t2]).normalized();
+    if (!(mean.squaredNorm() > 0.0)) return false; // a degenerate triangle (NaN) or opposite ones
+    if (mesh.normal(n1).dot(mean) <= 0.0 || mesh.normal(n2).dot(mean) <= 0.0) return false; // a fold
+    const double worst_before = std::min(mesh.kappa(mesh.tris[q.t1]), mesh.kappa(mesh.tris[q.t2]));
+    return std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(kappa_floor, worst_before);
+}
+
+namespace {
+
+using Tri = EditableMesh::Tri;
+
+// The input's acute creases as segments, found near a point through samples along them.
+class Creases {
+public:
+    Creases(const Mesh& input, double min_turn_deg, double spacing) {
+        const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
+        struct Use {
+            int32_t tri = -1, other = -1; // the triangles running a -> b and b -> a (a < b)
+            int count = 0;
+        };
+        std::unordered_map<uint64_t, Use> uses;
+        uses.reserve(static_cast<size_t>(3 * input.triangles.rows()));
+        for (Eigen::Index f = 0; f < input.triangles.rows(); ++f)
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = input.triangles(f, j), b = input.triangles(f, (j + 1) % 3);
+                Use& u = uses[edge_key(a, b)];
+                ++u.count;
+                (a < b ? u.tri : u.other) = static_cast<int32_t>(f);
+            }
+        auto normal = [&](int32_t f) {
+            const Eigen::Vector3d a = input.points.row(input.triangles(f, 0)).transpose();
+            return triangle_normal(a, input.points.row(input.triangles(f, 1)).transpose(),
+                                   input.points.row(input.triangles(f, 2)).transpose());
+        };
+        std::vector<Eigen::Vector3d> samples;
+        for (const auto& [key, u] : uses) {
+            // Two triangles using the edge in opposite directions: a consistently oriented pair.
+            if (u.count != 2 || u.tri < 0 || u.other < 0) continue;
+            const Eigen::Vector3d n1 = normal(u.tri), n2 = normal(u.other);
+            if (!(n1.squaredNorm() > 0.0 && n2.squaredNorm() > 0.0) || !(n1.dot(n2) < cos_turn)) continue;
+            const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
+            const Eigen::Vector3d pa = input.points.row(a).transpose(), pb = input.points.row(b).transpose();
+            ++degree_[a];
+            ++degree_[b];
+            const auto segment = static_cast<int32_t>(segments_.size());
+            segments_.push_back({pa, pb});
+            const double steps = std::min(1e5, std::ceil((pb - pa).norm() / spacing));
+            for (int i = 0; i <= static_cast<int>(steps); ++i) {
+                samples.push_back(pa + (pb - pa) * (i / std::max(1.0, steps)));
+                sample_segment_.push_back(segment);
+            }
+        }
+        for (const auto& [v, count] : degree_)
+            if (count != 2) corners_.push_back(input.points.row(v).transpose());
+        std::sort(corners_.begin(), corners_.end(), [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
+            return std::lexicographical_compare(l.data(), l.data() + 3, r.data(), r.data() + 3);
+        });
+        spacing_ = spacing;
+        if (!samples.empty()) {
+            Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> m(static_cast<Eigen::Index>(samples.size()), 3);
+            for (size_t i = 0; i < samples.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = samples[i].transpose();
+            tree_.emplace(m);
+        }
+    }
+
+    long size() const { return static_cast<long>(segments_.size()); }
+    //! Where a crease ends or meets others: its input vertices with other than two crease edges.
+    const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
+
+    // The closest point of a crease to p, if one lies within `radius`.
+    std::optional<Eigen::Vector3d> closest(const Eigen::Vector3d& p, double radius) const {
+        if (!tree_) return std::nullopt;
+        found_.clear();
+        tree_->within(p.data(), radius + spacing_, found_);
+        std::optional<Eigen::Vector3d> best;
+        double best_d2 = radius * radius;
+        for (int32_t s : found_) {
+            const auto& [a, b] = segments_[sample_segment_[s]];
+            const Eigen::Vector3d x = closest_point_on_segment(p, a, b);
+            if (const double d2 = (x - p).squaredNorm(); d2 <= best_d2) {
+                best_d2 = d2;
+                best = x;
+            }
+        }
+        return best;
+    }
+
+private:
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments_;
+    std::vector<int32_t> sample_segment_;
+    std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
+    std::vector<Eigen::Vector3d> corners_;
+    std::optional<KdTree> tree_;
+    double spacing_ = 0.0;
+    mutable std::vector<int32_t> found_;
+};
+
+// The mesh under moves and flips, with each vertex's triangles kept current.
+class Snapper {
+public:
+    Snapper(Mesh& mesh, const AabbTree& input, const CreaseSnapParams& params)
+        : mesh_(mesh), input_(input), params_(params), fans_(mesh_.points.size()),
+          cos_off_(std::cos(60.0 * M_PI / 180.0)) {
+        for (size_t t = 0; t < mesh_.tris.size(); ++t)
+            for (int32_t v : mesh_.tris[t]) fans_[v].push_back(static_cast<int>(t));
+    }
+
+    const EditableMesh& mesh() const { return mesh_; }
+
+    // Moves v to x with the flips that follow, or leaves everything as it was (see the header).
+    bool snap(int32_t v, const Eigen::Vector3d& x, long& flips) {
+        // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
+        // mesh there, lies farther from x than that.
+        double cut2 = std::numeric_limits<double>::infinity();
+        for (int t : fans_[v]) {
+            const Tri& f = mesh_.tris[t];
+            const Eigen::Vector3d near = closest_point_on_triangle(x, mesh_.points[f[0]], mesh_.points[f[1]], mesh_.points[f[2]]);
+            cut2 = std::min(cut2, (near - x).squaredNorm());
+        }
+        if (!(cut2 > params_.tolerance * params_.tolerance)) return false;
+        saved_.clear();
+        for (int t : fans_[v]) save(t);
+        const Eigen::Vector3d was = mesh_.points[v];
+        Measure before = measure_saved(); // the fan's originals, v where it was
+        mesh_.points[v] = x;
+        long made = 0;
+        for (int pass = 0; pass < 4; ++pass) {
+            long pass_flips = 0;
+            const std::vector<int> around = touched();
+            for (int t : around)
+                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before);
+            made += pass_flips;
+            if (pass_flips == 0) break;
+        }
+        const Measure after = measure(touched());
+        const bool ok = after.off <= before.off &&
+                        after.worst_kappa >= params_.kappa_floor &&
+                        after.farthest <= std::max(params_.tolerance, before.farthest);
+        if (ok) {
+            flips += made;
+            return true;
+        }
+        mesh_.points[v] = was;
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) set(it->first, it->second);
+        return false;
+    }
+
+private:
+    struct Measure {
+        double worst_kappa = 2.0;
+        double farthest = 0.0;
+        int off = 0; // triangles turned from the input by more than 60 degrees
+    };
+
+    // Whether t turns from the input's normal nearest to its centroid by more than 60 degrees.
+    bool is_off(const Tri& t) const {
+        const Eigen::Vector3d n = mesh_.normal(t);
+        const Eigen::Vector3d g = (mesh_.points[t[0]] + mesh_.points[t[1]] + mesh_.points[t[2]]) / 3.0;
+        const ClosestPoint near = input_.closest(g);
+        const double norm = n.norm();
+        return near.triangle < 0 || !(norm > 0.0) || !(n.dot(input_.triangle_normal(near.triangle)) >= cos_off_ * norm);
+    }
+    void add(Measure& m, const Tri& t) const {
+        m.worst_kappa = std::min(m.worst_kappa, mesh_.kappa(t));
+        m.farthest = std::max(m.farthest, triangle_distance_from_input(mesh_, t, input_));
+        m.off += is_off(t) ? 1 : 0;
+    }
+    Measure measure_saved() const {
+        Measure m;
+        for (const auto& [t, tri] : saved_) add(m, tri);
+        return m;
+    }
+    Measure measure(const std::vector<int>& tris) const {
+        Measure m;
+        for (int t : tris) add(m, mesh_.tris[t]);
+        return m;
+    }
+
+    // The triangles changed or moved so far in this snap.
+    std::vector<int> touched() const {
+        std::vector<int> out;
+        for (const auto& s : saved_) out.push_back(s.first);
+        return out;
+    }
+    void save(int t) {
+        for (const auto& s : saved_)
+            if (s.first == t) return;
+        saved_.emplace_back(t, mesh_.tris[t]);
+    }
+    void set(int t, const Tri& tri) {
+        for (int32_t v : mesh_.tris[t]) fans_[v].erase(std::find(fans_[v].begin(), fans_[v].end(), t));
+        mesh_.tris[t] = tri;
+        for (int32_t v : tri) fans_[v].push_back(t);
+    }
+    // The other triangle of edge a -> b of triangle t, if it runs b -> a and only they use it.
+    std::optional<EditableMesh::Quad> quad(int t, int j) const {
+        const Tri& first = mesh_.tris[t];
+        const int32_t a = first[j], b = first[(j + 1) % 3], c = first[(j + 2) % 3];
+        int other = -1, uses = 0;
+        for (int s : fans_[a]) {
+            const Tri& x = mesh_.tris[s];
+            for (int i = 0; i < 3; ++i) {
+                if (!((x[i] == a && x[(i + 1) % 3] == b) || (x[i] == b && x[(i + 1) % 3] == a))) continue;
+                ++uses;
+                if (s != t) other = x[i] == b ? s : -2;
+            }
+        }
+        if (uses != 2 || other < 0) return std::nullopt;
+        const Tri& second = mesh_.tris[other];
+        int32_t d = -1;
+        for (int32_t w : second)
+            if (w != a && w != b) d = w;
+        return EditableMesh::Quad{t, other, a, b, c, d};
+    }
+    bool joined(int32_t c, int32_t d) const {
+        for (int s : fans_[c])
+            for (int32_t w : mesh_.tris[s])
+                if (w == d) return true;
+        return false;
+    }
+    long try_flip(int t, int j, const Measure& before) {
+        const auto q = quad(t, j);
+        if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
+        const std::vector<Eigen::Vector3d>& x = mesh_.points;
+        auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input_.closest(p).squared_distance); };
+        const double d_before = distance(0.5 * (x[q->a] + x[q->b]));
+        const double d_after = distance(0.5 * (x[q->c] + x[q->d]));
+        if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
+                              std::min(params_.kappa_floor, before.worst_kappa)) &&
+            !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
+            return 0;
+        const auto [n1, n2] = EditableMesh::flipped(*q);
+        if (is_off(n1) || is_off(n2)) return 0;
+        save(q->t1);
+        save(q->t2);
+        set(q->t1, n1);
+        set(q->t2, n2);
+        return 1;
+    }
+
+    EditableMesh mesh_;
+    const AabbTree& input_;
+    const CreaseSnapParams& params_;
+    std::vector<std::vector<int>> fans_;
+    const double cos_off_;
+    std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
+};
+
+} // namespace
+
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
+                                      const CreaseSnapParams& params) {
+    check_indices(mesh, "snapped mesh");
+    check_indices(input, "input mesh");
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
+        !(params.min_turn_deg >= 0.0) ||
+        !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0))
+        throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner radius not "
+                           "negative, the turn "
+                           "between 0 and 180 degrees, the kappa floor not negative");
+    CreaseSnapStats stats;
+    const Creases creases(input, params.min_turn_deg, 0.5 * params.radius);
+    stats.creases = creases.size();
+    if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
+    // The vertices near a crease, nearest first (then by index: deterministic), after the
+    // vertex nearest to each corner of the creases.
+    std::vector<std::tuple<double, int32_t, Eigen::Vector3d>> near;
+    for (const Eigen::Vector3d& c : creases.corners()) {
+        Eigen::Index nearest = -1;
+        const double d2 = (mesh.points.rowwise() - c.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+        if (d2 > 0.0 && d2 <= params.corner_radius * params.corner_radius)
+            near.emplace_back(-1.0, static_cast<int32_t>(nearest), c);
+    }
+    for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
+        const Eigen::Vector3d p = mesh.points.row(v).transpose();
+        if (const auto x = creases.closest(p, params.radius); x && (*x - p).squaredNorm() > 0.0)
+            near.emplace_back((*x - p).norm(), static_cast<int32_t>(v), *x);
+    }
+    std::sort(near.begin(), near.end(),
+              [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
+    Snapper snapper(mesh, input_tree, params);
+    for (const auto& [distance, v, x] : near)
+        if (snapper.snap(v, x, stats.flipped)) ++stats.moved;
+    if (stats.moved > 0) snapper.mesh().write_to(mesh);
+    return stats;
+}
+
+} // namespace liftremesh
