@@ -130,6 +130,7 @@ public:
 
     // Moves v to x with the flips that follow, or leaves everything as it was (see the header).
     bool snap(int32_t v, const Eigen::Vector3d& x, long& flips) {
+        if (fans_[v].empty()) return false; // not a vertex of the surface
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
         double cut2 = std::numeric_limits<double>::infinity();
@@ -142,7 +143,7 @@ public:
         saved_.clear();
         for (int t : fans_[v]) save(t);
         const Eigen::Vector3d was = mesh_.points[v];
-        Measure before = measure_saved(); // the fan's originals, v where it was
+        const Measure before = measure_saved(); // the fan's originals, v where it was
         mesh_.points[v] = x;
         long made = 0;
         for (int pass = 0; pass < 4; ++pass) {
@@ -275,11 +276,9 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbT
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
-        !(params.min_turn_deg >= 0.0) ||
-        !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0))
-        throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner radius not "
-                           "negative, the turn "
-                           "between 0 and 180 degrees, the kappa floor not negative");
+        !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0))
+        throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
+                           "radius not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
     CreaseSnapStats stats;
     const Creases creases(input, params.min_turn_deg, 0.5 * params.radius);
     stats.creases = creases.size();
@@ -301,8 +300,14 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbT
     std::sort(near.begin(), near.end(),
               [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
     Snapper snapper(mesh, input_tree, params);
+    // A vertex moves once: a second entry (near two corners, or a corner and a crease) holds a
+    // target found from where it was.
+    std::vector<char> moved(static_cast<size_t>(mesh.points.rows()), 0);
     for (const auto& [distance, v, x] : near)
-        if (snapper.snap(v, x, stats.flipped)) ++stats.moved;
+        if (!moved[v] && snapper.snap(v, x, stats.flipped)) {
+            moved[v] = 1;
+            ++stats.moved;
+        }
     if (stats.moved > 0) snapper.mesh().write_to(mesh);
     return stats;
 }
