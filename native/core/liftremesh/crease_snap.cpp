@@ -214,25 +214,22 @@ private:
         mesh_.tris[t] = tri;
         for (int32_t v : tri) fans_[v].push_back(t);
     }
-    // The other triangle of edge a -> b of triangle t, if it runs b -> a and only they use it.
+    // The quad of edge j of triangle t (EditableMesh::quad_of, t as t1), from the fan of its
+    // first end: the uses of the edge, t's first.
     std::optional<EditableMesh::Quad> quad(int t, int j) const {
-        const Tri& first = mesh_.tris[t];
-        const int32_t a = first[j], b = first[(j + 1) % 3], c = first[(j + 2) % 3];
-        int other = -1, uses = 0;
-        for (int s : fans_[a]) {
-            const Tri& x = mesh_.tris[s];
+        const int32_t a = mesh_.tris[t][j], b = mesh_.tris[t][(j + 1) % 3];
+        EditableMesh::Uses uses;
+        auto add = [&](int s, int i) {
+            if (uses.count < 2) uses.first[uses.count] = {s, i};
+            ++uses.count;
+        };
+        add(t, j);
+        for (int s : fans_[a])
             for (int i = 0; i < 3; ++i) {
-                if (!((x[i] == a && x[(i + 1) % 3] == b) || (x[i] == b && x[(i + 1) % 3] == a))) continue;
-                ++uses;
-                if (s != t) other = x[i] == b ? s : -2;
+                const int32_t p = mesh_.tris[s][i], q = mesh_.tris[s][(i + 1) % 3];
+                if (s != t && ((p == a && q == b) || (p == b && q == a))) add(s, i);
             }
-        }
-        if (uses != 2 || other < 0) return std::nullopt;
-        const Tri& second = mesh_.tris[other];
-        int32_t d = -1;
-        for (int32_t w : second)
-            if (w != a && w != b) d = w;
-        return EditableMesh::Quad{t, other, a, b, c, d};
+        return mesh_.quad_of(uses);
     }
     bool joined(int32_t c, int32_t d) const {
         for (int s : fans_[c])
@@ -243,10 +240,7 @@ private:
     long try_flip(int t, int j, const Measure& before) {
         const auto q = quad(t, j);
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
-        const std::vector<Eigen::Vector3d>& x = mesh_.points;
-        auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input_.closest(p).squared_distance); };
-        const double d_before = distance(0.5 * (x[q->a] + x[q->b]));
-        const double d_after = distance(0.5 * (x[q->c] + x[q->d]));
+        const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
                               std::min(params_.kappa_floor, before.worst_kappa)) &&
             !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))

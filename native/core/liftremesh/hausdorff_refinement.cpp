@@ -188,12 +188,8 @@ private:
         return true;
     }
 
-    double distance_to_input(const Eigen::Vector3d& p) const { return std::sqrt(input_.closest(p).squared_distance); }
-
     bool should_flip(const EditableMesh::Quad& q) const {
-        const std::vector<Eigen::Vector3d>& x = mesh_.points;
-        const double before = distance_to_input(0.5 * (x[q.a] + x[q.b]));
-        const double after = distance_to_input(0.5 * (x[q.c] + x[q.d]));
+        const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         if (before > params_.tolerance && after < 0.5 * before)
             return crease_flip_fits(mesh_, q, before, after, params_.tolerance, params_.kappa_floor);

@@ -155,7 +155,6 @@ double farthest_squared(const std::array<Eigen::Vector3d, 7>& points, size_t fir
     return d2;
 }
 
-
 // Within `tolerance` of the input (triangle_distance_from_input), its normal within 30 degrees of the
 // input's triangle nearest to its centroid (whose query serves both).
 bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input, double tolerance) {
@@ -165,6 +164,12 @@ bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const A
            std::sqrt(farthest_squared(points, 1, near.squared_distance, input)) <= tolerance;
 }
 } // namespace
+
+DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input) {
+    const std::vector<Eigen::Vector3d>& x = mesh.points;
+    auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
+    return {distance(0.5 * (x[quad.a] + x[quad.b])), distance(0.5 * (x[quad.c] + x[quad.d]))};
+}
 
 double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
     return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
@@ -186,9 +191,8 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                                 double tolerance) {
     if (!mesh.flip_improves_quality(quad)) return false; // first: it spares the two distance queries
-    const std::vector<Eigen::Vector3d>& x = mesh.points;
-    auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
-    return keeps_surface(distance(0.5 * (x[quad.a] + x[quad.b])), distance(0.5 * (x[quad.c] + x[quad.d])), tolerance);
+    const auto [before, after] = diagonal_distances(mesh, quad, input);
+    return keeps_surface(before, after, tolerance);
 }
 
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,

@@ -50,6 +50,13 @@ struct QualityPolishStats {
     long moved = 0;    //!< vertex moves
 };
 
+//! Distances from the input of the midpoints of the quad's edge a-b (`before`) and of its other
+//! diagonal c-d (`after`): what the flip rules below weigh.
+struct DiagonalDistances {
+    double before, after;
+};
+DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input);
+
 //! Whether flipping the quad's edge is a quality flip that keeps the surface on the input
 //! (the first rule above); `input` is the input's tree, `tolerance` > 0.
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
