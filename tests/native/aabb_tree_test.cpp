@@ -153,3 +153,37 @@ TEST(AabbTree, AnyWithinFindsATriangleExactlyWhenOneIsNearerThanTheRadius) {
     EXPECT_GT(misses, 100);
     EXPECT_EQ(AabbTree(Mesh{}).any_within(Eigen::Vector3d::Zero(), 1.0), -1);
 }
+
+TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
+    const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
+    const AabbTree tree(m);
+    // Accept the triangles facing up only: brute force over them.
+    const auto up = [&](int32_t f) { return tree.triangle_normal(f).z() > 0.2; };
+    Mesh facing_up = m;
+    Eigen::Index kept = 0;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        if (up(static_cast<int32_t>(f))) facing_up.triangles.row(kept++) = m.triangles.row(f);
+    facing_up.triangles.conservativeResize(kept, 3);
+    ASSERT_GT(kept, 0);
+    ASSERT_LT(kept, m.triangles.rows());
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6), radius(0.05, 0.8);
+    int found = 0, none = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
+        const double r = radius(rng);
+        const ClosestPoint want = brute_force_closest(facing_up, q), got = tree.closest_where(q, r, up);
+        if (want.squared_distance < r * r * (1 - 1e-9)) {
+            ASSERT_GE(got.triangle, 0) << i;
+            EXPECT_TRUE(up(got.triangle)) << i;
+            EXPECT_NEAR(got.squared_distance, want.squared_distance, 1e-12) << i;
+            ++found;
+        } else if (want.squared_distance > r * r * (1 + 1e-9)) {
+            EXPECT_EQ(got.triangle, -1) << i;
+            EXPECT_EQ(got.squared_distance, r * r) << i;
+            ++none;
+        }
+    }
+    EXPECT_GT(found, 100);
+    EXPECT_GT(none, 100);
+}

@@ -133,13 +133,19 @@ int32_t AabbTree::any_within(const Eigen::Vector3d& q, double r) const {
     return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, true).triangle;
 }
 
+ClosestPoint AabbTree::closest_where(const Eigen::Vector3d& q, double r,
+                                     const std::function<bool(int32_t)>& accept) const {
+    return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, false, &accept);
+}
+
 Eigen::Vector3d AabbTree::triangle_normal(int32_t triangle) const {
     if (triangle < 0 || static_cast<size_t>(triangle) >= impl_->normals.size())
         throw InvalidInput("AABB tree: no triangle " + std::to_string(triangle));
     return impl_->normals[static_cast<size_t>(triangle)];
 }
 
-ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit) const {
+ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit,
+                              const std::function<bool(int32_t)>* accept) const {
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
 
@@ -153,6 +159,7 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool 
         const Node& node = nodes[index];
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
+                if (accept && !(*accept)(impl_->ids[t])) continue;
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
                 const double d2 = (p - q).squaredNorm();

@@ -4,6 +4,7 @@
 
 #include "liftremesh/mesh.h"
 
+#include <functional>
 #include <memory>
 
 namespace liftremesh {
@@ -38,13 +39,20 @@ public:
     //! that stops at the first such triangle, far cheaper than closest() when r is small.
     int32_t any_within(const Eigen::Vector3d& q, double r) const;
 
+    //! The closest point within r of q on a triangle for which `accept` (given the triangle's
+    //! index) is true; triangle -1 at squared distance r^2 if there is none. Thread-safe if
+    //! `accept` is.
+    ClosestPoint closest_where(const Eigen::Vector3d& q, double r, const std::function<bool(int32_t)>& accept) const;
+
     //! Unit normal of the mesh's triangle `triangle` (as ClosestPoint::triangle numbers it),
     //! in its orientation; zero for a degenerate triangle.
     Eigen::Vector3d triangle_normal(int32_t triangle) const;
 
 private:
-    //! best: initial bound; first_hit: return as soon as a triangle beats it.
-    ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false) const;
+    //! best: initial bound; first_hit: return as soon as a triangle beats it; accept: if not
+    //! null, only the triangles it accepts count.
+    ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false,
+                        const std::function<bool(int32_t)>* accept = nullptr) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -114,6 +114,14 @@ int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, st
     return connected_components(n, shared, fan);
 }
 
+CompressedRows vertex_triangles(const Mesh& mesh) {
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    pairs.reserve(3 * static_cast<size_t>(mesh.triangles.rows()));
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) pairs.emplace_back(mesh.triangles(f, j), static_cast<int32_t>(f));
+    return compress_rows(static_cast<long>(mesh.points.rows()), pairs);
+}
+
 std::vector<char> referenced_vertices(const Mesh& mesh) {
     std::vector<char> used(static_cast<size_t>(mesh.points.rows()), 0);
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)

@@ -2,6 +2,8 @@
 // normalisation into the unit ball of Section 5.1).
 #pragma once
 
+#include "liftremesh/compressed_rows.h"
+
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -79,6 +81,9 @@ int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, st
 
 //! #V flags, 1 for the vertices some triangle refers to.
 std::vector<char> referenced_vertices(const Mesh& mesh);
+
+//! Row v: the triangles that have vertex v as a corner, in increasing order.
+CompressedRows vertex_triangles(const Mesh& mesh);
 
 //! V - E + F counting only vertices referenced by a triangle.
 int euler_characteristic(const Mesh& mesh);

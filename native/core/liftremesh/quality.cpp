@@ -113,13 +113,8 @@ long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
 //! through edges at the vertex (e.g. two cones touching at their apex: vertex_fans, mesh.h),
 //! into q.nonmanifold_vertices, and their fans beyond the first into q.extra_vertex_fans.
 void measure_vertices(const Mesh& mesh, MeshQuality& q) {
-    const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
-    // Vertex -> incident triangles.
-    std::vector<std::pair<int32_t, int32_t>> pairs;
-    pairs.reserve(3 * static_cast<size_t>(nf));
-    for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 0; j < 3; ++j) pairs.emplace_back(mesh.triangles(f, j), static_cast<int32_t>(f));
-    const CompressedRows incident = compress_rows(nv, pairs);
+    const Eigen::Index nv = mesh.points.rows();
+    const CompressedRows incident = vertex_triangles(mesh);
 
     std::vector<std::array<int32_t, 3>> around;
     std::vector<int> fan;
