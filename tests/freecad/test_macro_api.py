@@ -9,6 +9,7 @@ import sys
 import unittest
 
 import FreeCAD
+import MeshPart
 import Part
 
 import LiftRemesh
@@ -64,7 +65,7 @@ class MacroApiTest(unittest.TestCase):
         self.assertGreater(sharp_shape, 0.0)
         self.assertAlmostEqual(sharp_mesh / sharp_shape, 1.0, delta=0.02)
         # Hausdorff distance to the shape, through a fine tessellation of it (0.01 mm deflection)
-        fine = mesh_checks.arrays(__import__("MeshPart").meshFromShape(
+        fine = mesh_checks.arrays(MeshPart.meshFromShape(
             Shape=shape, LinearDeflection=shape.BoundBox.DiagonalLength * 1e-4,
             AngularDeflection=math.radians(5), Relative=False))
         distance = mesh_checks.hausdorff(points, triangles, *fine)
@@ -108,19 +109,31 @@ class MacroApiTest(unittest.TestCase):
             LiftRemesh.remesh_shape(box_with_hole(), linear_deflection=0)
 
     def test_thin_parts_below_the_edge_length_are_reported(self):
-        """Two plates 0.2 mm apart remeshed with ~2 mm edges merge: the result says so."""
-        plates = Part.makeBox(20, 20, 1).fuse(Part.makeBox(20, 20, 1, FreeCAD.Vector(0, 0, 1.2)))
-        mesh = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(plates, 0.1, 0.5), vertices=150)
+        """A ring whose tube is 3.1 mm round, remeshed with ~2 mm edges, cannot keep its hole: the
+        result says so."""
+        ring = MeshPart.meshFromShape(Part.makeTorus(10, 0.5), 0.05, 0.2)
+        mesh = LiftRemesh.remesh_mesh(ring, vertices=60)
         self.assertTrue(any("topology differs" in w for w in mesh.warnings), mesh.warnings)
-        good = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(box_with_hole(), 0.1, 0.5),
-                                      vertices=1500)
+        good = LiftRemesh.remesh_mesh(MeshPart.meshFromShape(box_with_hole(), 0.1, 0.5), vertices=1500)
         self.assertEqual(good.warnings, [])
+
+    def test_plates_closer_than_the_edge_length_stay_apart(self):
+        """Two plates 1 mm thick and 0.2 mm apart, remeshed with ~3.7 mm edges: each stays a closed
+        surface of its own (thin_walls.h lifts their faces apart), measured on the mesh. Its 1 mm
+        sides are still cut by so long edges, which the distance warning says."""
+        plates = Part.makeBox(20, 20, 1).fuse(Part.makeBox(20, 20, 1, FreeCAD.Vector(0, 0, 1.2)))
+        mesh = LiftRemesh.remesh_mesh(MeshPart.meshFromShape(plates, 0.1, 0.5), vertices=150)
+        points, triangles = mesh_checks.arrays(mesh.mesh)
+        self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles))
+        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 4)
+        self.assertFalse(any("topology differs" in w for w in mesh.warnings), mesh.warnings)
+        self.assertTrue(any("away from the source" in w for w in mesh.warnings), mesh.warnings)
 
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""
         face = Part.Face(Part.Wire(Part.makeCircle(20)))
         face = face.cut(Part.Face(Part.Wire(Part.makeCircle(6, FreeCAD.Vector(5, 0, 0)))))
-        mesh = LiftRemesh.remesh_mesh(__import__("MeshPart").meshFromShape(face, 0.1, 0.5), vertices=600)
+        mesh = LiftRemesh.remesh_mesh(MeshPart.meshFromShape(face, 0.1, 0.5), vertices=600)
         self.assertEqual(mesh.warnings, [])
         self.assertEqual(mesh.report["input"]["boundary_loops"], 2)
         self.assertEqual(mesh.report["output"]["boundary_loops"], 2)

@@ -93,4 +93,11 @@ LiftedPoints lift(const Points& points, const Points& normals, double nu) {
     return out;
 }
 
+LiftedPoints lift(const Points& points, const Points& normals, const Eigen::VectorXd& nu) {
+    LiftedPoints out(points.rows(), 6);
+    out.leftCols(3) = points;
+    out.rightCols(3) = normals.array().colwise() * nu.array(); // Eq. 12, nu per vertex
+    return out;
+}
+
 } // namespace liftremesh

@@ -17,4 +17,7 @@ Points vertex_normals(const Mesh& mesh, double eta);
 //! #V by d lifted points x (+) nu n (Eq. 12): d = 6, or d = 3 (the plain surface) when nu == 0.
 LiftedPoints lift(const Points& points, const Points& normals, double nu);
 
+//! The same with a scale per vertex, x (+) nu_v n (#V values, thin_walls.h): always d = 6.
+LiftedPoints lift(const Points& points, const Points& normals, const Eigen::VectorXd& nu);
+
 } // namespace liftremesh

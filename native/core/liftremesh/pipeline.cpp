@@ -19,6 +19,7 @@
 #include "liftremesh/repair.h"
 #include "liftremesh/rvd.h"
 #include "liftremesh/sampling.h"
+#include "liftremesh/thin_walls.h"
 #include "liftremesh/threads.h"
 
 #include <chrono>
@@ -119,11 +120,21 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     apply_transform(to_unit, unit.points);
     clock.end();
 
+    // The edge length of an equilateral mesh with the vertices asked for, in unit-ball units.
+    const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
+
     clock.begin("normals");
+    const AabbTree input_tree(input); // thin walls here, distances to the input from the repair on
     const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
     const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
-    const LiftedSurface surface = make_lifted_surface(lift(unit.points, normals, params.nu), // Eq. 12
-                                                      unit.triangles, density_weights(rho, params.delta));
+    LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
+    if (params.nu > 0.0) {
+        // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
+        // stay apart on the lifted surface (thin_walls.h).
+        const Eigen::VectorXd thickness = wall_thickness(input, input_tree, spacing * to_unit.scale) / to_unit.scale;
+        lifted = lift(unit.points, normals, thin_wall_lifting(thickness, params.nu, spacing));
+    }
+    const LiftedSurface surface = make_lifted_surface(lifted, unit.triangles, density_weights(rho, params.delta));
     clock.end();
 
     clock.begin("optimize");
@@ -151,8 +162,6 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     clock.begin("repair");
     const RepairStats repaired = make_manifold(out);
     report.triangles_removed = repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
-    // The edge length of an equilateral mesh with the vertices asked for, in unit-ball units.
-    const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
     if (params.fill_holes) {
         const Eigen::Index first_fill = out.triangles.rows();
         report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
@@ -164,7 +173,6 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     undo_transform(to_unit, out.points);
     // After the collapse, which may keep an interior end point of an edge at the boundary, and in
     // the input's coordinates, so that snapped corners are exactly the input's.
-    const AabbTree input_tree(input);
     const BoundarySnapStats snapped = snap_boundary(out, input, {}, &input_tree);
     report.boundary_vertices_snapped = snapped.moved();
     report.triangles_removed += snapped.flaps_removed;

@@ -1,0 +1,41 @@
+#include "liftremesh/thin_walls.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace liftremesh {
+
+Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double reach) {
+    const Eigen::Index nv = mesh.points.rows();
+    const CompressedRows around = vertex_triangles(mesh);
+    const double cos_parallel = -std::cos(kWallTaperDeg * M_PI / 180.0);
+    Eigen::VectorXd thickness(nv);
+#pragma omp parallel
+    {
+        std::vector<Eigen::Vector3d> own;
+#pragma omp for schedule(dynamic, 256)
+        for (Eigen::Index v = 0; v < nv; ++v) {
+            own.clear();
+            for (const int32_t* f = around.begin(v); f != around.end(v); ++f) own.push_back(tree.triangle_normal(*f));
+            const auto far_side = [&](int32_t f) {
+                if (mesh.triangles(f, 0) == v || mesh.triangles(f, 1) == v || mesh.triangles(f, 2) == v) return false;
+                const Eigen::Vector3d n = tree.triangle_normal(f);
+                return std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; });
+            };
+            thickness[v] = std::sqrt(tree.closest_where(mesh.points.row(v).transpose(), reach, far_side).squared_distance);
+        }
+    }
+    return thickness;
+}
+
+Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, double spacing) {
+    Eigen::VectorXd scale(thickness.size());
+    for (Eigen::Index v = 0; v < thickness.size(); ++v) {
+        const double t = std::min(thickness[v], spacing);
+        scale[v] = std::max(nu, 0.5 * std::sqrt(spacing * spacing - t * t));
+    }
+    return scale;
+}
+
+} // namespace liftremesh
