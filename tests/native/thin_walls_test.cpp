@@ -92,3 +92,12 @@ TEST(ThinWallLifting, LiftsTheSidesOfAThinWallASpacingApart) {
     EXPECT_EQ(scale[3], nu); // 0.0995^2 + 4 nu^2 > spacing^2
     EXPECT_EQ(scale[5], nu);
 }
+
+// A triangle turned over in the middle of a face (a dirty soup) faces away from its neighbours
+// but lies beside them, not across: no wall.
+TEST(WallThickness, ATriangleTurnedOverInAFaceIsNoWall) {
+    Mesh square = test::make_square(1.0, 8);
+    square.triangles.row(60).tail<2>().reverseInPlace();
+    const Eigen::VectorXd t = wall_thickness(square, AabbTree(square), 0.5);
+    EXPECT_EQ(t, Eigen::VectorXd::Constant(square.points.rows(), 0.5));
+}

@@ -1,5 +1,7 @@
 #include "liftremesh/thin_walls.h"
 
+#include "liftremesh/geometry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -18,12 +20,18 @@ Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double re
         for (Eigen::Index v = 0; v < nv; ++v) {
             own.clear();
             for (const int32_t* f = around.begin(v); f != around.end(v); ++f) own.push_back(tree.triangle_normal(*f));
+            const Eigen::Vector3d x = mesh.points.row(v).transpose();
             const auto far_side = [&](int32_t f) {
                 if (mesh.triangles(f, 0) == v || mesh.triangles(f, 1) == v || mesh.triangles(f, 2) == v) return false;
                 const Eigen::Vector3d n = tree.triangle_normal(f);
-                return std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; });
+                if (!std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; }))
+                    return false;
+                // Across from the vertex: the way to its nearest point runs along its normal.
+                const Eigen::Vector3d a = corner(mesh, f, 0);
+                const Eigen::Vector3d p = closest_point_on_triangle(x, a, corner(mesh, f, 1), corner(mesh, f, 2));
+                return std::abs((x - p).dot(n)) >= -cos_parallel * (x - p).norm();
             };
-            thickness[v] = std::sqrt(tree.closest_where(mesh.points.row(v).transpose(), reach, far_side).squared_distance);
+            thickness[v] = std::sqrt(tree.closest_where(x, reach, far_side).squared_distance);
         }
     }
     return thickness;

@@ -23,8 +23,9 @@ constexpr double kWallTaperDeg = 25.0;
 
 //! Per vertex of `mesh` (the mesh `tree` was built over), the distance to the far side of a
 //! wall or of a narrow gap: the nearest triangle, not one of the vertex's own, whose normal is
-//! antiparallel, within kWallTaperDeg, to that of one of the vertex's own triangles; `reach`
-//! if there is none nearer. Two faces meeting at a knife edge of a larger interior angle are
+//! antiparallel, within kWallTaperDeg, to that of one of the vertex's own triangles, and across
+//! from the vertex (the way to its nearest point within kWallTaperDeg of its normal; a triangle
+//! turned over in a face lies beside the vertex, not across); `reach` if there is none nearer. Two faces meeting at a knife edge of a larger interior angle are
 //! close only because they meet there: lifting them apart would keep the sites farther off the
 //! edge (crease_snap.h), so they are no wall (on the shared hinge, a lip of 49 degrees). A
 //! wall's rim, where the vertex has triangles of a side and of the rim's face, is still on
