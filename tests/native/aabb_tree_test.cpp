@@ -158,7 +158,7 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
     const AabbTree tree(m);
     // Accept the triangles facing up only: brute force over them.
-    const auto up = [&](int32_t f) { return tree.triangle_normal(f).z() > 0.2; };
+    const auto up = [&](int32_t f, const Eigen::Vector3d& = {}) { return tree.triangle_normal(f).z() > 0.2; };
     Mesh facing_up = m;
     Eigen::Index kept = 0;
     for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)

@@ -134,7 +134,7 @@ int32_t AabbTree::any_within(const Eigen::Vector3d& q, double r) const {
 }
 
 ClosestPoint AabbTree::closest_where(const Eigen::Vector3d& q, double r,
-                                     const std::function<bool(int32_t)>& accept) const {
+                                     const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const {
     return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, false, &accept);
 }
 
@@ -145,7 +145,7 @@ Eigen::Vector3d AabbTree::triangle_normal(int32_t triangle) const {
 }
 
 ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit,
-                              const std::function<bool(int32_t)>* accept) const {
+                              const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept) const {
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
 
@@ -159,11 +159,10 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool 
         const Node& node = nodes[index];
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
-                if (accept && !(*accept)(impl_->ids[t])) continue;
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
                 const double d2 = (p - q).squaredNorm();
-                if (d2 < best.squared_distance) {
+                if (d2 < best.squared_distance && (!accept || (*accept)(impl_->ids[t], p))) {
                     best = {p, d2, impl_->ids[t]};
                     if (first_hit) return best;
                 }

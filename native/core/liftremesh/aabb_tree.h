@@ -40,9 +40,11 @@ public:
     int32_t any_within(const Eigen::Vector3d& q, double r) const;
 
     //! The closest point within r of q on a triangle for which `accept` (given the triangle's
-    //! index) is true; triangle -1 at squared distance r^2 if there is none. Thread-safe if
-    //! `accept` is.
-    ClosestPoint closest_where(const Eigen::Vector3d& q, double r, const std::function<bool(int32_t)>& accept) const;
+    //! index and its point closest to q) is true; triangle -1 at squared distance r^2 if there
+    //! is none. `accept` is asked only about triangles nearer than the best found so far.
+    //! Thread-safe if `accept` is.
+    ClosestPoint closest_where(const Eigen::Vector3d& q, double r,
+                               const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const;
 
     //! Unit normal of the mesh's triangle `triangle` (as ClosestPoint::triangle numbers it),
     //! in its orientation; zero for a degenerate triangle.
@@ -50,9 +52,9 @@ public:
 
 private:
     //! best: initial bound; first_hit: return as soon as a triangle beats it; accept: if not
-    //! null, only the triangles it accepts count.
+    //! null, only the triangles it accepts (asked with their closest point) count.
     ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false,
-                        const std::function<bool(int32_t)>* accept = nullptr) const;
+                        const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept = nullptr) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

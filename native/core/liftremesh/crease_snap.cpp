@@ -174,18 +174,20 @@ private:
         int off = 0; // triangles turned from the input by more than 60 degrees
     };
 
-    // Whether t turns from the input's normal nearest to its centroid by more than 60 degrees.
-    bool is_off(const Tri& t) const {
+    // Whether t turns by more than 60 degrees from the input's triangle `nearest` to its centroid.
+    bool is_off(const Tri& t, int32_t nearest) const {
         const Eigen::Vector3d n = mesh_.normal(t);
-        const Eigen::Vector3d g = (mesh_.points[t[0]] + mesh_.points[t[1]] + mesh_.points[t[2]]) / 3.0;
-        const ClosestPoint near = input_.closest(g);
         const double norm = n.norm();
-        return near.triangle < 0 || !(norm > 0.0) || !(n.dot(input_.triangle_normal(near.triangle)) >= cos_off_ * norm);
+        return nearest < 0 || !(norm > 0.0) || !(n.dot(input_.triangle_normal(nearest)) >= cos_off_ * norm);
+    }
+    bool is_off(const Tri& t) const {
+        return is_off(t, input_.closest((mesh_.points[t[0]] + mesh_.points[t[1]] + mesh_.points[t[2]]) / 3.0).triangle);
     }
     void add(Measure& m, const Tri& t) const {
+        const TriangleNearInput near = triangle_near_input(mesh_, t, input_); // one query of the centroid for both
         m.worst_kappa = std::min(m.worst_kappa, mesh_.kappa(t));
-        m.farthest = std::max(m.farthest, triangle_distance_from_input(mesh_, t, input_));
-        m.off += is_off(t) ? 1 : 0;
+        m.farthest = std::max(m.farthest, near.distance);
+        m.off += is_off(t, near.nearest_to_centroid) ? 1 : 0;
     }
     Measure measure_saved() const {
         Measure m;

@@ -175,6 +175,12 @@ double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh
     return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
 }
 
+TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    const std::array<Eigen::Vector3d, 7> points = probe_points(mesh, t);
+    const ClosestPoint near = input.closest(points[0]);
+    return {std::sqrt(farthest_squared(points, 1, near.squared_distance, input)), near.triangle};
+}
+
 bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                           double tolerance) {
     const EditableMesh::Tri& t1 = mesh.tris[quad.t1];

@@ -79,6 +79,14 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
 //! midpoints and the points halfway from the centroid to its corners.
 double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
 
+//! triangle_distance_from_input, with the input's triangle nearest to the triangle's centroid
+//! (-1 if the input has none), whose query the distance shares.
+struct TriangleNearInput {
+    double distance;
+    int32_t nearest_to_centroid;
+};
+TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
 QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params);

@@ -1,7 +1,5 @@
 #include "liftremesh/thin_walls.h"
 
-#include "liftremesh/geometry.h"
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -21,15 +19,11 @@ Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double re
             own.clear();
             for (const int32_t* f = around.begin(v); f != around.end(v); ++f) own.push_back(tree.triangle_normal(*f));
             const Eigen::Vector3d x = mesh.points.row(v).transpose();
-            const auto far_side = [&](int32_t f) {
+            const auto far_side = [&](int32_t f, const Eigen::Vector3d& p) {
                 if (mesh.triangles(f, 0) == v || mesh.triangles(f, 1) == v || mesh.triangles(f, 2) == v) return false;
                 const Eigen::Vector3d n = tree.triangle_normal(f);
-                if (!std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; }))
-                    return false;
-                // Across from the vertex: the way to its nearest point runs along its normal.
-                const Eigen::Vector3d a = corner(mesh, f, 0);
-                const Eigen::Vector3d p = closest_point_on_triangle(x, a, corner(mesh, f, 1), corner(mesh, f, 2));
-                return std::abs((x - p).dot(n)) >= -cos_parallel * (x - p).norm();
+                return std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; }) &&
+                       std::abs((x - p).dot(n)) >= -cos_parallel * (x - p).norm(); // across: along its normal
             };
             thickness[v] = std::sqrt(tree.closest_where(x, reach, far_side).squared_distance);
         }
