@@ -128,11 +128,13 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
     const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
     LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
-    if (params.nu > 0.0) {
+    if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
         // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
         // stay apart on the lifted surface (thin_walls.h).
-        const Eigen::VectorXd thickness = wall_thickness(input, input_tree, spacing * to_unit.scale) / to_unit.scale;
+        const Eigen::VectorXd thickness = wall_thickness(input, input_tree, reach * to_unit.scale) / to_unit.scale;
         lifted = lift(unit.points, normals, thin_wall_lifting(thickness, params.nu, spacing));
+    } else if (params.nu > 0.0) {
+        lifted = lift(unit.points, normals, params.nu); // Eq. 12: nu alone keeps every wall's sides apart
     }
     const LiftedSurface surface = make_lifted_surface(lifted, unit.triangles, density_weights(rho, params.delta));
     clock.end();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace liftremesh {
@@ -25,17 +26,21 @@ Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double re
                 return std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; }) &&
                        std::abs((x - p).dot(n)) >= -cos_parallel * (x - p).norm(); // across: along its normal
             };
-            thickness[v] = std::sqrt(tree.closest_where(x, reach, far_side).squared_distance);
+            const ClosestPoint wall = tree.closest_where(x, reach, far_side);
+            thickness[v] = wall.triangle >= 0 ? std::sqrt(wall.squared_distance) : std::numeric_limits<double>::infinity();
         }
     }
     return thickness;
 }
 
+double wall_reach(double nu, double spacing) { return std::sqrt(std::max(0.0, spacing * spacing - 4.0 * nu * nu)); }
+
 Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, double spacing) {
+    const double reach = wall_reach(nu, spacing);
     Eigen::VectorXd scale(thickness.size());
     for (Eigen::Index v = 0; v < thickness.size(); ++v) {
-        const double t = std::min(thickness[v], spacing);
-        scale[v] = std::max(nu, 0.5 * std::sqrt(spacing * spacing - t * t));
+        const double t = thickness[v];
+        scale[v] = t >= reach ? nu : std::max(nu, 0.5 * std::sqrt(spacing * spacing - t * t));
     }
     return scale;
 }
