@@ -73,8 +73,17 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             f.corners.push_back({piece, l, m});
         }
     }, cache);
+    // The chunks' pieces and corners in chunk order, each chunk's freed as it is copied: the
+    // run's peak memory is here (on the bunny at 50k vertices).
+    size_t piece_count = 0, corner_count = 0;
+    for (const auto& f : found) {
+        piece_count += f.value.pieces.size();
+        corner_count += f.value.corners.size();
+    }
     std::vector<Piece> pieces;
     std::vector<Corner> corners;
+    pieces.reserve(piece_count);
+    corners.reserve(corner_count);
     for (auto& f : found) {
         const auto offset = static_cast<int32_t>(pieces.size());
         pieces.insert(pieces.end(), f.value.pieces.begin(), f.value.pieces.end());
@@ -82,6 +91,7 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             c.piece += offset;
             corners.push_back(c);
         }
+        f.value = ChunkFound{};
     }
     const auto np = static_cast<int>(pieces.size());
 
