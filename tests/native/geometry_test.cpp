@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <map>
+#include <vector>
+
 using namespace liftremesh;
 
 TEST(Geometry, KappaIsOneForEquilateralAndZeroForDegenerate) {
@@ -60,7 +65,7 @@ TEST(Mesh, EulerCharacteristicOfBuiltShapes) {
     EXPECT_NEAR(surface_area(test::make_cube(1.0, 3)), 24.0, 1e-12);
 }
 
-TEST(Mesh, EdgeCountsAreSortedPairsWithTheirMultiplicity) {
+TEST(Mesh, EdgeCountsAndUsesAreSortedPairsWithTheirTriangles) {
     auto expect_counts = [](const Triangles& t) {
         std::map<std::pair<int32_t, int32_t>, int> expected; // counted from scratch
         for (Eigen::Index f = 0; f < t.rows(); ++f)
@@ -75,11 +80,45 @@ TEST(Mesh, EdgeCountsAreSortedPairsWithTheirMultiplicity) {
             ++it;
         }
     };
-    expect_counts(test::make_torus(1.0, 0.3, 12, 6).triangles);
+    // edge_uses: the same edges, each with the sides (3 f + j) of the live triangles that run
+    // along it, in increasing order; every other row is left out (live[f] = 0).
+    auto expect_uses = [](const Triangles& t, const std::vector<char>& live) {
+        std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>> expected;
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                if (live.empty() || live[f])
+                    expected[{std::min(t(f, j), t(f, (j + 1) % 3)), std::max(t(f, j), t(f, (j + 1) % 3))}].push_back(
+                        static_cast<int32_t>(3 * f + j));
+        const EdgeUses got = edge_uses(t, live);
+        ASSERT_EQ(got.size(), static_cast<long>(expected.size()));
+        ASSERT_EQ(got.uses.offsets.size(), expected.size() + 1);
+        auto it = expected.begin();
+        for (long e = 0; e < got.size(); ++e, ++it) {
+            EXPECT_EQ(std::make_pair(got.a[e], got.b[e]), it->first);
+            EXPECT_EQ(std::vector<int32_t>(got.uses.begin(e), got.uses.end(e)), it->second) << e;
+        }
+    };
+    auto expect_both = [&](const Triangles& t) {
+        expect_counts(t);
+        expect_uses(t, {});
+        std::vector<char> odd(static_cast<size_t>(t.rows()), 0);
+        for (size_t f = 1; f < odd.size(); f += 2) odd[f] = 1;
+        expect_uses(t, odd);
+    };
+    expect_both(test::make_torus(1.0, 0.3, 12, 6).triangles);
     Triangles fin(4, 3); // three triangles on the edge {0, 1}, and one with a repeated index
     fin << 0, 1, 2, 1, 0, 3, 0, 1, 4, 4, 4, 0;
-    expect_counts(fin);
+    expect_both(fin);
     fin(2, 2) = 1'000'000; // an index far beyond the triangle count: the other code path
-    expect_counts(fin);
+    expect_both(fin);
+    // Listed in lexicographic order, as the restricted Delaunay triangulation lists them.
+    Triangles sorted = test::make_icosphere(3).triangles;
+    std::vector<std::array<int32_t, 3>> rows(static_cast<size_t>(sorted.rows()));
+    for (Eigen::Index f = 0; f < sorted.rows(); ++f) rows[f] = {sorted(f, 0), sorted(f, 1), sorted(f, 2)};
+    std::sort(rows.begin(), rows.end());
+    for (Eigen::Index f = 0; f < sorted.rows(); ++f) sorted.row(f) << rows[f][0], rows[f][1], rows[f][2];
+    expect_both(sorted);
     EXPECT_TRUE(edge_counts(Triangles(0, 3)).empty());
+    EXPECT_EQ(edge_uses(Triangles(0, 3)).size(), 0);
+    EXPECT_EQ(edge_uses(Triangles(0, 3)).uses.offsets, std::vector<int32_t>{0});
 }

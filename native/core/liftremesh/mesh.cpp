@@ -61,22 +61,66 @@ double bounding_box_diagonal(const Points& points) {
     return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
 }
 
-std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
-    std::vector<std::pair<int32_t, int32_t>> edges;
-    edges.reserve(3 * triangles.rows());
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& live) {
+    auto ends = [corners](int32_t use) {
+        const int32_t* t = corners + 3 * (use / 3);
+        const int j = use % 3;
+        return std::minmax(t[j], t[j == 2 ? 0 : j + 1]);
+    };
+    // The uses by their edge's lower end, each vertex's in increasing order.
+    std::vector<std::pair<int32_t, int32_t>> by_low;
+    by_low.reserve(3 * static_cast<size_t>(count));
+    int32_t vertices = 0;
+    for (long f = 0; f < count; ++f) {
+        if (!live.empty() && !live[f]) continue;
         for (int j = 0; j < 3; ++j) {
-            const int32_t a = triangles(f, j), b = triangles(f, (j + 1) % 3);
-            edges.emplace_back(std::min(a, b), std::max(a, b));
+            const auto use = static_cast<int32_t>(3 * f + j);
+            const auto [lo, hi] = ends(use);
+            by_low.emplace_back(lo, use);
+            vertices = std::max(vertices, hi + 1);
         }
-    std::sort(edges.begin(), edges.end());
-    std::vector<EdgeCount> out;
-    for (size_t i = 0; i < edges.size();) {
-        size_t j = i;
-        while (j < edges.size() && edges[j] == edges[i]) ++j;
-        out.push_back({edges[i].first, edges[i].second, static_cast<int>(j - i)});
-        i = j;
     }
+    // Grouped by lower end, uses in increasing order: a counting sort, or where the indices
+    // are far more than the uses (a few triangles of a large mesh) a comparison sort.
+    if (static_cast<size_t>(vertices) <= 4 * by_low.size() + 1024) {
+        const CompressedRows low = compress_rows(vertices, by_low);
+        for (int32_t lo = 0, i = 0; lo < vertices; ++lo)
+            for (const int32_t* use = low.begin(lo); use != low.end(lo); ++use) by_low[i++] = {lo, *use};
+    } else {
+        std::sort(by_low.begin(), by_low.end());
+    }
+    EdgeUses out;
+    out.uses.values.reserve(by_low.size());
+    out.uses.offsets.push_back(0);
+    std::vector<std::pair<int32_t, int32_t>> around; // (upper end, use) of one vertex
+    for (size_t group = 0; group < by_low.size();) {
+        const int32_t lo = by_low[group].first;
+        around.clear();
+        for (; group < by_low.size() && by_low[group].first == lo; ++group)
+            around.emplace_back(ends(by_low[group].second).second, by_low[group].second);
+        std::sort(around.begin(), around.end());
+        for (size_t i = 0; i < around.size(); ++i) {
+            if (i > 0 && around[i].first != around[i - 1].first)
+                out.uses.offsets.push_back(static_cast<int32_t>(out.uses.values.size()));
+            if (i == 0 || around[i].first != around[i - 1].first) {
+                out.a.push_back(lo);
+                out.b.push_back(around[i].first);
+            }
+            out.uses.values.push_back(around[i].second);
+        }
+        out.uses.offsets.push_back(static_cast<int32_t>(out.uses.values.size()));
+    }
+    return out;
+}
+
+EdgeUses edge_uses(const Triangles& triangles, const std::vector<char>& live) {
+    return edge_uses(triangles.data(), static_cast<long>(triangles.rows()), live);
+}
+
+std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
+    const EdgeUses edges = edge_uses(triangles);
+    std::vector<EdgeCount> out(static_cast<size_t>(edges.size()));
+    for (long e = 0; e < edges.size(); ++e) out[e] = {edges.a[e], edges.b[e], static_cast<int>(edges.count(e))};
     return out;
 }
 

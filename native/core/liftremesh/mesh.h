@@ -56,6 +56,24 @@ double surface_area(const Mesh& mesh);
 //! Axis-aligned bounding-box diagonal length of the referenced vertices.
 double bounding_box_diagonal(const Points& points);
 
+//! The undirected edges of a list of triangles and the triangles' uses of each. Edge e joins
+//! a[e] <= b[e]; the edges come in increasing (a, b) order. Its uses are uses.begin(e) ..
+//! uses.end(e), in increasing order, each 3 f + j for the side of triangle f from its corner j
+//! to its corner j + 1 (mod 3). Made in linear time (a counting sort on a, then each vertex's
+//! few edges sorted by b): a comparison sort of the 3 #F uses took 3 to 6 times as long on
+//! triangles listed in order, as the restricted Delaunay triangulation lists them.
+struct EdgeUses {
+    std::vector<int32_t> a, b;
+    CompressedRows uses;
+    long size() const { return static_cast<long>(a.size()); }
+    long count(long e) const { return uses.end(e) - uses.begin(e); }
+};
+
+//! The edges of `count` triangles given as 3 count corner indices (>= 0), of those with
+//! live[f] only unless `live` is empty.
+EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& live = {});
+EdgeUses edge_uses(const Triangles& triangles, const std::vector<char>& live = {});
+
 //! Undirected edges (i < j) with the number of triangles using each, sorted by (i, j).
 struct EdgeCount {
     int32_t a, b;

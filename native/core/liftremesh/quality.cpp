@@ -44,55 +44,38 @@ void measure_triangles(const Mesh& mesh, MeshQuality& q) {
 
 // ---- per edge -----------------------------------------------------------------------------------
 
-//! One triangle's use of an undirected edge (a <= b); `forward` if the triangle runs a -> b.
-struct EdgeUse {
-    int32_t a, b;
-    int32_t triangle;
-    bool forward;
-    bool operator<(const EdgeUse& o) const { return a != o.a ? a < o.a : b != o.b ? b < o.b : triangle < o.triangle; }
-};
-
-std::vector<EdgeUse> sorted_edge_uses(const Triangles& triangles) {
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * static_cast<size_t>(triangles.rows()));
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) {
-            const int32_t u = triangles(f, j), v = triangles(f, (j + 1) % 3);
-            uses.push_back({std::min(u, v), std::max(u, v), static_cast<int32_t>(f), u <= v});
-        }
-    std::sort(uses.begin(), uses.end());
-    return uses;
+//! Whether the side `use` (3 f + j, edge_uses) runs from the lower vertex to the higher one.
+bool runs_forward(const Triangles& triangles, int32_t use) {
+    const Eigen::Index f = use / 3;
+    const int j = use % 3;
+    return triangles(f, j) <= triangles(f, (j + 1) % 3);
 }
 
-//! Angle in degrees between the normals of the two triangles on a manifold edge. When the two
-//! triangles disagree in orientation one normal is flipped, so that the measure is the dihedral
-//! deviation from flat whatever the orientation.
-double normal_angle_deg(const Mesh& mesh, const EdgeUse& s, const EdgeUse& t) {
-    const Eigen::Vector3d n1 =
-        triangle_normal(corner(mesh, s.triangle, 0), corner(mesh, s.triangle, 1), corner(mesh, s.triangle, 2));
-    Eigen::Vector3d n2 =
-        triangle_normal(corner(mesh, t.triangle, 0), corner(mesh, t.triangle, 1), corner(mesh, t.triangle, 2));
-    if (s.forward == t.forward) n2 = -n2;
+//! Angle in degrees between the normals of the two triangles on a manifold edge (their sides
+//! s and t, see edge_uses). When the two triangles disagree in orientation one normal is
+//! flipped, so that the measure is the dihedral deviation from flat whatever the orientation.
+double normal_angle_deg(const Mesh& mesh, int32_t s, int32_t t) {
+    const Eigen::Index fs = s / 3, ft = t / 3;
+    const Eigen::Vector3d n1 = triangle_normal(corner(mesh, fs, 0), corner(mesh, fs, 1), corner(mesh, fs, 2));
+    Eigen::Vector3d n2 = triangle_normal(corner(mesh, ft, 0), corner(mesh, ft, 1), corner(mesh, ft, 2));
+    if (runs_forward(mesh.triangles, s) == runs_forward(mesh.triangles, t)) n2 = -n2;
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / M_PI;
 }
 
 //! Returns the number of distinct edges.
 long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
-    const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
+    const EdgeUses edges = edge_uses(mesh.triangles);
     std::vector<std::pair<int, int>> boundary;
-    long edges = 0;
-    for (size_t i = 0; i < uses.size(); ++edges) {
-        size_t j = i;
-        while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
-        const size_t count = j - i;
-        if (count == 1) boundary.emplace_back(uses[i].a, uses[i].b);
+    for (long e = 0; e < edges.size(); ++e) {
+        const long count = edges.count(e);
+        const int32_t* use = edges.uses.begin(e);
+        if (count == 1) boundary.emplace_back(edges.a[e], edges.b[e]);
         if (count >= 3) ++q.nonmanifold_edges;
         if (count == 2) {
-            if (uses[i].forward == uses[i + 1].forward) q.oriented = false;
-            if (normal_angle_deg(mesh, uses[i], uses[i + 1]) > sharp_angle_deg)
-                q.sharp_edge_length += (mesh.points.row(uses[i].a) - mesh.points.row(uses[i].b)).norm();
+            if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) q.oriented = false;
+            if (normal_angle_deg(mesh, use[0], use[1]) > sharp_angle_deg)
+                q.sharp_edge_length += (mesh.points.row(edges.a[e]) - mesh.points.row(edges.b[e])).norm();
         }
-        i = j;
     }
     q.boundary_edges = static_cast<long>(boundary.size());
     // Boundary loops: the connected components of the boundary edges.
@@ -104,7 +87,7 @@ long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
             counted[component[a]] = 1;
             ++q.boundary_loops;
         }
-    return edges;
+    return edges.size();
 }
 
 // ---- per vertex ---------------------------------------------------------------------------------
