@@ -33,33 +33,18 @@ using Tri = EditableMesh::Tri;
 // The input's acute creases as segments, found near a point through samples along them.
 class Creases {
 public:
-    Creases(const Mesh& input, double min_turn_deg, double spacing) {
+    Creases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing) {
         const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
-        struct Use {
-            int32_t tri = -1, other = -1; // the triangles running a -> b and b -> a (a < b)
-            int count = 0;
-        };
-        std::unordered_map<uint64_t, Use> uses;
-        uses.reserve(static_cast<size_t>(3 * input.triangles.rows()));
-        for (Eigen::Index f = 0; f < input.triangles.rows(); ++f)
-            for (int j = 0; j < 3; ++j) {
-                const int32_t a = input.triangles(f, j), b = input.triangles(f, (j + 1) % 3);
-                Use& u = uses[edge_key(a, b)];
-                ++u.count;
-                (a < b ? u.tri : u.other) = static_cast<int32_t>(f);
-            }
-        auto normal = [&](int32_t f) {
-            const Eigen::Vector3d a = input.points.row(input.triangles(f, 0)).transpose();
-            return triangle_normal(a, input.points.row(input.triangles(f, 1)).transpose(),
-                                   input.points.row(input.triangles(f, 2)).transpose());
-        };
+        const EdgeUses edges = edge_uses(input.triangles);
         std::vector<Eigen::Vector3d> samples;
-        for (const auto& [key, u] : uses) {
+        for (long e = 0; e < edges.size(); ++e) {
             // Two triangles using the edge in opposite directions: a consistently oriented pair.
-            if (u.count != 2 || u.tri < 0 || u.other < 0) continue;
-            const Eigen::Vector3d n1 = normal(u.tri), n2 = normal(u.other);
+            if (edges.count(e) != 2) continue;
+            const int32_t s = edges.uses.begin(e)[0], t = edges.uses.begin(e)[1];
+            if (runs_forward(input.triangles, s) == runs_forward(input.triangles, t)) continue;
+            const Eigen::Vector3d n1 = input_tree.triangle_normal(s / 3), n2 = input_tree.triangle_normal(t / 3);
             if (!(n1.squaredNorm() > 0.0 && n2.squaredNorm() > 0.0) || !(n1.dot(n2) < cos_turn)) continue;
-            const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
+            const int32_t a = edges.a[e], b = edges.b[e];
             const Eigen::Vector3d pa = input.points.row(a).transpose(), pb = input.points.row(b).transpose();
             ++degree_[a];
             ++degree_[b];
@@ -276,7 +261,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbT
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
                            "radius not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
     CreaseSnapStats stats;
-    const Creases creases(input, params.min_turn_deg, 0.5 * params.radius);
+    const Creases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius);
     stats.creases = creases.size();
     if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
     // The vertices near a crease, nearest first (then by index: deterministic), after the

@@ -69,6 +69,15 @@ struct EdgeUses {
     long count(long e) const { return uses.end(e) - uses.begin(e); }
 };
 
+//! Whether the side `use` (3 f + j, as EdgeUses numbers it) runs from its edge's lower vertex
+//! to its higher one. The two triangles on an edge agree in orientation when their sides run
+//! opposite ways.
+inline bool runs_forward(const Triangles& triangles, int32_t use) {
+    const Eigen::Index f = use / 3;
+    const int j = use % 3;
+    return triangles(f, j) <= triangles(f, j == 2 ? 0 : j + 1);
+}
+
 //! The edges of `count` triangles given as 3 count corner indices (>= 0), of those with
 //! live[f] only unless `live` is empty.
 EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& live = {});

@@ -44,13 +44,6 @@ void measure_triangles(const Mesh& mesh, MeshQuality& q) {
 
 // ---- per edge -----------------------------------------------------------------------------------
 
-//! Whether the side `use` (3 f + j, edge_uses) runs from the lower vertex to the higher one.
-bool runs_forward(const Triangles& triangles, int32_t use) {
-    const Eigen::Index f = use / 3;
-    const int j = use % 3;
-    return triangles(f, j) <= triangles(f, (j + 1) % 3);
-}
-
 //! Angle in degrees between the normals of the two triangles on a manifold edge (their sides
 //! s and t, see edge_uses). When the two triangles disagree in orientation one normal is
 //! flipped, so that the measure is the dihedral deviation from flat whatever the orientation.
