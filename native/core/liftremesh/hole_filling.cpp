@@ -30,19 +30,13 @@ struct HoleEdge {
 
 // Edges used by exactly one triangle, directed from -> to where the triangle runs to -> from.
 std::vector<HoleEdge> hole_edges(const Triangles& triangles) {
-    std::unordered_map<uint64_t, std::pair<int, HoleEdge>> uses; // key -> (count, last use)
-    uses.reserve(static_cast<size_t>(3 * triangles.rows() / 2 + 1));
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) {
-            const int32_t a = triangles(f, j), b = triangles(f, (j + 1) % 3);
-            auto& use = uses[edge_key(a, b)];
-            use.first += 1;
-            use.second = {b, a, static_cast<int>(f)};
-        }
+    const EdgeUses edges = edge_uses(triangles);
     std::vector<HoleEdge> out;
-    for (const auto& [key, use] : uses)
-        if (use.first == 1) out.push_back(use.second);
-    // Deterministic order, whatever the hash map did.
+    for (long e = 0; e < edges.size(); ++e)
+        if (edges.count(e) == 1) {
+            const int32_t use = *edges.uses.begin(e), f = use / 3, j = use % 3;
+            out.push_back({triangles(f, (j + 1) % 3), triangles(f, j), f}); // against the triangle's side
+        }
     std::sort(out.begin(), out.end(),
               [](const HoleEdge& x, const HoleEdge& y) { return std::tie(x.from, x.to) < std::tie(y.from, y.to); });
     return out;
