@@ -125,7 +125,10 @@ std::vector<EdgeCount> edge_counts(const Triangles& triangles) {
 }
 
 int connected_components(int n, const std::vector<std::pair<int, int>>& links, std::vector<int>& label) {
-    std::vector<int> parent(static_cast<size_t>(n));
+    // Scratch kept per thread: the manifold repair and the quality measure call this (through
+    // vertex_fans) for every vertex, and allocating here cost more than the work.
+    thread_local std::vector<int> parent, label_of_root;
+    parent.resize(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) parent[i] = i;
     auto find = [&](int i) {
         while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -133,7 +136,7 @@ int connected_components(int n, const std::vector<std::pair<int, int>>& links, s
     };
     for (const auto& [a, b] : links) parent[find(a)] = find(b);
     label.assign(static_cast<size_t>(n), -1);
-    std::vector<int> label_of_root(static_cast<size_t>(n), -1);
+    label_of_root.assign(static_cast<size_t>(n), -1);
     int count = 0;
     for (int i = 0; i < n; ++i) {
         int& root_label = label_of_root[find(i)];
@@ -146,13 +149,14 @@ int connected_components(int n, const std::vector<std::pair<int, int>>& links, s
 int vertex_fans(int32_t v, const std::vector<std::array<int32_t, 3>>& around, std::vector<int>& fan) {
     const int n = static_cast<int>(around.size());
     // Spokes (w, i): triangle i has the edge (v, w). Triangles with a common spoke share that edge.
-    std::vector<std::pair<int32_t, int>> spokes;
-    spokes.reserve(2 * around.size());
+    thread_local std::vector<std::pair<int32_t, int>> spokes; // scratch, as in connected_components
+    thread_local std::vector<std::pair<int, int>> shared;
+    spokes.clear();
+    shared.clear();
     for (int i = 0; i < n; ++i)
         for (int32_t w : around[i])
             if (w != v) spokes.emplace_back(w, i);
     std::sort(spokes.begin(), spokes.end());
-    std::vector<std::pair<int, int>> shared;
     for (size_t k = 1; k < spokes.size(); ++k)
         if (spokes[k].first == spokes[k - 1].first) shared.emplace_back(spokes[k].second, spokes[k - 1].second);
     return connected_components(n, shared, fan);

@@ -111,13 +111,15 @@ public:
     // worklist revisits the vertices of removed triangles (a removal can split a neighbour's
     // fan); every removal is final, so the work is bounded by the number of triangles.
     long fix_nonmanifold_vertices() {
-        std::vector<std::vector<int>> vertex_tris(static_cast<size_t>(points_.rows()));
+        std::vector<std::pair<int32_t, int32_t>> corners; // (vertex, live triangle)
+        corners.reserve(3 * tris_.size());
         for (size_t f = 0; f < tris_.size(); ++f)
             if (alive_[f])
-                for (int32_t v : tris_[f]) vertex_tris[v].push_back(static_cast<int>(f));
+                for (int32_t v : tris_[f]) corners.emplace_back(v, static_cast<int32_t>(f));
+        const CompressedRows vertex_tris = compress_rows(points_.rows(), corners);
         std::deque<int32_t> work;
-        std::vector<char> queued(vertex_tris.size(), 1);
-        for (size_t v = 0; v < vertex_tris.size(); ++v) work.push_back(static_cast<int32_t>(v));
+        std::vector<char> queued(static_cast<size_t>(points_.rows()), 1);
+        for (int32_t v = 0; v < static_cast<int32_t>(points_.rows()); ++v) work.push_back(v);
         long removed = 0;
         std::vector<int> live, fan;
         std::vector<Tri> around;                  // corners of the live triangles around v
@@ -127,9 +129,8 @@ public:
             work.pop_front();
             queued[v] = 0;
             live.clear();
-            for (int t : vertex_tris[v])
-                if (alive_[t]) live.push_back(t);
-            vertex_tris[v] = live; // drop the dead ones for later visits
+            for (const int32_t* t = vertex_tris.begin(v); t != vertex_tris.end(v); ++t)
+                if (alive_[*t]) live.push_back(*t);
             if (live.size() < 2) continue;
             around.clear();
             for (int t : live) around.push_back(tris_[t]);
