@@ -1,3 +1,4 @@
+#include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 #include "liftremesh/mesh.h"
 #include "helpers.h"
@@ -121,4 +122,8 @@ TEST(Mesh, EdgeCountsAndUsesAreSortedPairsWithTheirTriangles) {
     EXPECT_TRUE(edge_counts(Triangles(0, 3)).empty());
     EXPECT_EQ(edge_uses(Triangles(0, 3)).size(), 0);
     EXPECT_EQ(edge_uses(Triangles(0, 3)).uses.offsets, std::vector<int32_t>{0});
+    Triangles negative(1, 3);
+    negative << 0, -1, 2;
+    EXPECT_THROW(edge_uses(negative), InvalidInput);
+    EXPECT_THROW(edge_counts(negative), InvalidInput);
 }

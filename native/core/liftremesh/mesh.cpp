@@ -70,21 +70,23 @@ EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& 
     // The uses by their edge's lower end, each vertex's in increasing order.
     std::vector<std::pair<int32_t, int32_t>> by_low;
     by_low.reserve(3 * static_cast<size_t>(count));
-    int32_t vertices = 0;
+    long vertices = 0; // the largest index + 1
     for (long f = 0; f < count; ++f) {
         if (!live.empty() && !live[f]) continue;
         for (int j = 0; j < 3; ++j) {
             const auto use = static_cast<int32_t>(3 * f + j);
             const auto [lo, hi] = ends(use);
+            if (lo < 0) throw InvalidInput("a triangle refers to vertex " + std::to_string(lo));
             by_low.emplace_back(lo, use);
-            vertices = std::max(vertices, hi + 1);
+            vertices = std::max(vertices, static_cast<long>(hi) + 1);
         }
     }
     // Grouped by lower end, uses in increasing order: a counting sort, or where the indices
     // are far more than the uses (a few triangles of a large mesh) a comparison sort.
     if (static_cast<size_t>(vertices) <= 4 * by_low.size() + 1024) {
         const CompressedRows low = compress_rows(vertices, by_low);
-        for (int32_t lo = 0, i = 0; lo < vertices; ++lo)
+        size_t i = 0;
+        for (int32_t lo = 0; lo < vertices; ++lo)
             for (const int32_t* use = low.begin(lo); use != low.end(lo); ++use) by_low[i++] = {lo, *use};
     } else {
         std::sort(by_low.begin(), by_low.end());

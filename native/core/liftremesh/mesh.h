@@ -78,8 +78,8 @@ inline bool runs_forward(const Triangles& triangles, int32_t use) {
     return triangles(f, j) <= triangles(f, j == 2 ? 0 : j + 1);
 }
 
-//! The edges of `count` triangles given as 3 count corner indices (>= 0), of those with
-//! live[f] only unless `live` is empty.
+//! The edges of `count` triangles given as 3 count corner indices, of those with live[f] only
+//! unless `live` is empty. Throws InvalidInput on a negative index.
 EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& live = {});
 EdgeUses edge_uses(const Triangles& triangles, const std::vector<char>& live = {});
 
