@@ -61,7 +61,8 @@ double bounding_box_diagonal(const Points& points);
 //! uses.end(e), in increasing order, each 3 f + j for the side of triangle f from its corner j
 //! to its corner j + 1 (mod 3). Made in linear time (a counting sort on a, then each vertex's
 //! few edges sorted by b): a comparison sort of the 3 #F uses took 3 to 6 times as long on
-//! triangles listed in order, as the restricted Delaunay triangulation lists them.
+//! triangles listed in order, as the restricted Delaunay triangulation lists them. For a mesh
+//! under flips and splits, EditableMesh keeps its edges' uses in a hash map instead.
 struct EdgeUses {
     std::vector<int32_t> a, b;
     CompressedRows uses;
