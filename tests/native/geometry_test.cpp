@@ -126,4 +126,5 @@ TEST(Mesh, EdgeCountsAndUsesAreSortedPairsWithTheirTriangles) {
     negative << 0, -1, 2;
     EXPECT_THROW(edge_uses(negative), InvalidInput);
     EXPECT_THROW(edge_counts(negative), InvalidInput);
+    EXPECT_THROW(edge_uses(fin, std::vector<char>(3, 1)), InvalidInput); // 4 triangles, 3 flags
 }

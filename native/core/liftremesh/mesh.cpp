@@ -67,6 +67,9 @@ EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& 
         const int j = use % 3;
         return std::minmax(t[j], t[j == 2 ? 0 : j + 1]);
     };
+    if (!live.empty() && static_cast<long>(live.size()) != count)
+        throw InvalidInput("edge_uses: " + std::to_string(live.size()) + " live flags for " + std::to_string(count) +
+                           " triangles");
     // The uses by their edge's lower end, each vertex's in increasing order.
     std::vector<std::pair<int32_t, int32_t>> by_low;
     by_low.reserve(3 * static_cast<size_t>(count));

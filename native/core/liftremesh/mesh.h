@@ -81,7 +81,8 @@ inline bool runs_forward(const Triangles& triangles, int32_t use) {
 }
 
 //! The edges of `count` triangles given as 3 count corner indices, of those with live[f] only
-//! unless `live` is empty. Throws InvalidInput on a negative index.
+//! unless `live` is empty (else it has a flag per triangle). Throws InvalidInput on a negative
+//! index or on a `live` of another size.
 EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& live = {});
 EdgeUses edge_uses(const Triangles& triangles, const std::vector<char>& live = {});
 
