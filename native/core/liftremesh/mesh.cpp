@@ -105,9 +105,8 @@ EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& 
             around.emplace_back(ends(by_low[group].second).second, by_low[group].second);
         std::sort(around.begin(), around.end());
         for (size_t i = 0; i < around.size(); ++i) {
-            if (i > 0 && around[i].first != around[i - 1].first)
-                out.uses.offsets.push_back(static_cast<int32_t>(out.uses.values.size()));
-            if (i == 0 || around[i].first != around[i - 1].first) {
+            if (i == 0 || around[i].first != around[i - 1].first) { // a new edge: close the last one
+                if (i > 0) out.uses.offsets.push_back(static_cast<int32_t>(out.uses.values.size()));
                 out.a.push_back(lo);
                 out.b.push_back(around[i].first);
             }

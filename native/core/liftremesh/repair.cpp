@@ -92,11 +92,11 @@ public:
         build_edge_index();
         long removed = 0;
         std::vector<int> live;
-        for (size_t e = 0; e < keys_.size(); ++e) { // sorted keys: a deterministic order
-            if (start_[e + 1] - start_[e] <= 2) continue;
+        for (long e = 0; e < edges_.size(); ++e) { // sorted edges: a deterministic order
+            if (edges_.count(e) <= 2) continue;
             live_on(static_cast<int>(e), live);
             if (live.size() <= 2) continue;
-            const auto a = static_cast<int32_t>(keys_[e] >> 32), b = static_cast<int32_t>(keys_[e] & 0xffffffffu);
+            const int32_t a = edges_.a[e], b = edges_.b[e];
             const auto [keep1, keep2] = best_pair(live, a, b);
             for (int t : live)
                 if (t != keep1 && t != keep2) {
@@ -213,7 +213,7 @@ public:
         build_edge_index();
         long removed = 0;
         std::vector<int> live;
-        for (size_t e = 0; e < keys_.size(); ++e) {
+        for (long e = 0; e < edges_.size(); ++e) {
             live_on(static_cast<int>(e), live);
             if (live.size() != 2) continue;
             const auto a = static_cast<int32_t>(keys_[e] >> 32), b = static_cast<int32_t>(keys_[e] & 0xffffffffu);
@@ -251,16 +251,13 @@ private:
 
     double kappa(int t) const { return triangle_kappa(p(tris_[t][0]), p(tris_[t][1]), p(tris_[t][2])); }
 
-    // Sorted edge -> triangle incidence of the live triangles: edge e has key keys_[e] and the
-    // triangles inc_[start_[e] .. start_[e + 1]), in increasing order (edge_uses, mesh.h).
+    // Sorted edge -> triangle incidence of the live triangles (edge_uses, mesh.h), and each
+    // edge's key for find_edge().
     void build_edge_index() {
         static_assert(sizeof(Tri) == 3 * sizeof(int32_t), "triangles stored as consecutive corners");
-        const EdgeUses edges = edge_uses(tris_.empty() ? nullptr : tris_[0].data(), static_cast<long>(tris_.size()), alive_);
-        keys_.resize(static_cast<size_t>(edges.size()));
-        for (long e = 0; e < edges.size(); ++e) keys_[e] = edge_key(edges.a[e], edges.b[e]);
-        start_ = edges.uses.offsets;
-        inc_.resize(edges.uses.values.size());
-        for (size_t i = 0; i < inc_.size(); ++i) inc_[i] = edges.uses.values[i] / 3;
+        edges_ = edge_uses(tris_.empty() ? nullptr : tris_[0].data(), static_cast<long>(tris_.size()), alive_);
+        keys_.resize(static_cast<size_t>(edges_.size()));
+        for (long e = 0; e < edges_.size(); ++e) keys_[e] = edge_key(edges_.a[e], edges_.b[e]);
     }
 
     // Index of the edge with this key in the last build_edge_index(), or -1.
@@ -273,8 +270,8 @@ private:
     void live_on(int e, std::vector<int>& live) const {
         live.clear();
         if (e < 0) return;
-        for (int i = start_[e]; i < start_[e + 1]; ++i)
-            if (alive_[inc_[i]]) live.push_back(inc_[i]);
+        for (const int32_t* use = edges_.uses.begin(e); use != edges_.uses.end(e); ++use)
+            if (alive_[*use / 3]) live.push_back(*use / 3);
     }
 
     // Number of t's edges other than {a, b} that another live triangle shares: a fin hanging on
@@ -321,8 +318,8 @@ private:
     std::vector<Tri> tris_;
     std::vector<char> alive_;
     std::vector<char> reversed_; // reoriented an odd number of times
-    std::vector<uint64_t> keys_; // see build_edge_index()
-    std::vector<int> start_, inc_;
+    EdgeUses edges_;             // see build_edge_index()
+    std::vector<uint64_t> keys_; // edge_key of each of edges_, sorted
 };
 
 } // namespace
