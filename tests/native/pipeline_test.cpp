@@ -17,10 +17,11 @@ using namespace liftremesh;
 
 namespace {
 
-RemeshParams params_with(int vertices, double sigma = 5.0) {
+RemeshParams params_with(int vertices, double sigma = 5.0, std::uint64_t seed = RemeshParams{}.seed) {
     RemeshParams p;
     p.target_vertices = vertices;
     p.sigma = sigma;
+    p.seed = seed;
     return p;
 }
 
@@ -177,9 +178,7 @@ TEST(Remesh, PlatesCloserThanTheEdgeLengthStayApart) {
     plates.triangles.conservativeResize(2 * upper.triangles.rows(), 3);
     plates.triangles.bottomRows(upper.triangles.rows()) = upper.triangles.array() + static_cast<int32_t>(upper.points.rows());
     for (unsigned seed : {1u, 2u, 3u}) {
-        RemeshParams p = params_with(150);
-        p.seed = seed;
-        const RemeshResult r = remesh(plates, p);
+        const RemeshResult r = remesh(plates, params_with(150, 5.0, seed));
         const test::Topology t = test::topology(r.mesh);
         EXPECT_TRUE(t.closed_oriented_manifold()) << "seed " << seed;
         EXPECT_EQ(t.chi, 4) << "seed " << seed;
@@ -192,9 +191,7 @@ namespace {
 // A shared mesh at 6000 vertices, default settings but for the seed.
 RemeshResult remesh_shared(const std::string& path, Mesh& input, std::uint64_t seed = RemeshParams{}.seed) {
     input = read_mesh(path);
-    RemeshParams p = params_with(6000);
-    p.seed = seed;
-    return remesh(input, p);
+    return remesh(input, params_with(6000, 5.0, seed));
 }
 std::string mesh_name(const ::testing::TestParamInfo<const char*>& info) {
     const std::string name = info.param;
@@ -383,9 +380,7 @@ TEST(Remesh, AKnifeEdgeIsNotCutOff) {
     }
     const Mesh input = test::make_mesh(pts, tris);
     for (unsigned seed : {1u, 2u}) {
-        RemeshParams p = params_with(1000);
-        p.seed = seed;
-        const RemeshResult r = remesh(input, p);
+        const RemeshResult r = remesh(input, params_with(1000, 5.0, seed));
         const test::Topology t = test::topology(r.mesh);
         EXPECT_TRUE(t.closed_oriented_manifold()) << "seed " << seed;
         EXPECT_EQ(t.chi, 2) << "seed " << seed;
