@@ -19,18 +19,35 @@ namespace {
 constexpr int kLeafSize = 4;  // triangles per leaf at most
 constexpr int kMaxDepth = 64; // median splits halve the count: depth <= log2(#F) + 1 <= 33
 
+//! An axis-aligned box.
+struct Box {
+    std::array<double, 3> lo, hi;
+    void add(const Eigen::Vector3d& p) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], p[k]);
+            hi[k] = std::max(hi[k], p[k]);
+        }
+    }
+    static Box empty() {
+        Box b;
+        b.lo.fill(std::numeric_limits<double>::infinity());
+        b.hi.fill(-std::numeric_limits<double>::infinity());
+        return b;
+    }
+};
+
 //! A node of the tree. Inner nodes have two children stored next to each other.
 struct Node {
-    std::array<double, 3> lo, hi; //!< bounding box of the node's triangles
-    int32_t first;                //!< leaf: first triangle (tree order); inner: index of the left child
-    int32_t count;                //!< leaf: number of triangles (>= 1); inner: 0
+    Box box;       //!< bounding box of the node's triangles
+    int32_t first; //!< leaf: first triangle (tree order); inner: index of the left child
+    int32_t count; //!< leaf: number of triangles (>= 1); inner: 0
 };
 
 //! Squared distance from q to the box (0 inside).
-double box_squared_distance(const Node& node, const Eigen::Vector3d& q) {
+double box_squared_distance(const Box& box, const Eigen::Vector3d& q) {
     double d2 = 0.0;
     for (int k = 0; k < 3; ++k) {
-        const double below = node.lo[k] - q[k], above = q[k] - node.hi[k];
+        const double below = box.lo[k] - q[k], above = q[k] - box.hi[k];
         const double d = std::max({below, above, 0.0});
         d2 += d * d;
     }
@@ -45,6 +62,7 @@ double sort_key(double x) { return std::isnan(x) ? std::numeric_limits<double>::
 struct AabbTree::Impl {
     std::vector<Node> nodes;              //!< nodes[0] is the root (empty tree: no node)
     std::vector<Eigen::Vector3d> corners; //!< 3 corners per triangle, in tree order
+    std::vector<Box> boxes;               //!< bounding box of each triangle, in tree order
     std::vector<int32_t> ids;             //!< input triangle index, in tree order
     std::vector<Eigen::Vector3d> normals; //!< unit normal per input triangle, in input order
 
@@ -53,16 +71,11 @@ struct AabbTree::Impl {
     void build(int32_t index, std::vector<int32_t>& order, const std::vector<Eigen::Vector3d>& centroids,
                const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, int32_t begin, int32_t end) {
         Node node;
-        node.lo.fill(std::numeric_limits<double>::infinity());
-        node.hi.fill(-std::numeric_limits<double>::infinity());
+        node.box = Box::empty();
         Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
         Eigen::Vector3d chi = -clo;
         for (int32_t i = begin; i < end; ++i) {
-            for (const auto& p : triangles[order[i]])
-                for (int k = 0; k < 3; ++k) {
-                    node.lo[k] = std::min(node.lo[k], p[k]);
-                    node.hi[k] = std::max(node.hi[k], p[k]);
-                }
+            for (const auto& p : triangles[order[i]]) node.box.add(p);
             clo = clo.cwiseMin(centroids[order[i]]);
             chi = chi.cwiseMax(centroids[order[i]]);
         }
@@ -112,8 +125,15 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
 
     impl_->ids = order;
     impl_->corners.reserve(3 * static_cast<size_t>(nf));
-    for (const int32_t f : order)
-        for (const auto& p : triangles[f]) impl_->corners.push_back(p);
+    impl_->boxes.reserve(static_cast<size_t>(nf));
+    for (const int32_t f : order) {
+        Box box = Box::empty();
+        for (const auto& p : triangles[f]) {
+            impl_->corners.push_back(p);
+            box.add(p);
+        }
+        impl_->boxes.push_back(box);
+    }
 }
 
 AabbTree::~AabbTree() = default;
@@ -149,16 +169,22 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool 
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
 
-    // Depth-first, nearer child first; a node is skipped once its box is no nearer than the best.
-    std::array<std::pair<int32_t, double>, 2 * kMaxDepth> stack;
+    // Depth-first, nearer child first; a node is skipped once its box is no nearer than the best,
+    // and so is a leaf's triangle (its exact distance costs six times its box's).
+    struct Pending {
+        int32_t index;
+        double box_d2;
+    };
+    Pending stack[2 * kMaxDepth]; // not a std::array of pairs, which every query would zero
     int top = 0;
-    stack[top++] = {0, box_squared_distance(nodes[0], q)};
+    stack[top++] = {0, box_squared_distance(nodes[0].box, q)};
     while (top > 0) {
         const auto [index, box_d2] = stack[--top];
         if (box_d2 >= best.squared_distance) continue;
         const Node& node = nodes[index];
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
+                if (box_squared_distance(impl_->boxes[t], q) >= best.squared_distance) continue;
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
                 const double d2 = (p - q).squaredNorm();
@@ -169,9 +195,9 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool 
             }
             continue;
         }
-        const double dl = box_squared_distance(nodes[node.first], q);
-        const double dr = box_squared_distance(nodes[node.first + 1], q);
-        assert(top + 2 <= static_cast<int>(stack.size()));
+        const double dl = box_squared_distance(nodes[node.first].box, q);
+        const double dr = box_squared_distance(nodes[node.first + 1].box, q);
+        assert(top + 2 <= 2 * kMaxDepth);
         if (dl <= dr) {
             stack[top++] = {node.first + 1, dr};
             stack[top++] = {node.first, dl};
