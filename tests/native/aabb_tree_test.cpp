@@ -2,11 +2,13 @@
 #include "liftremesh/aabb_tree.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
+#include "liftremesh/threads.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -61,6 +63,31 @@ TEST(AabbTree, ClosestPointMatchesBruteForceOnIcosphere) {
 TEST(AabbTree, ClosestPointMatchesBruteForceOnNonConvexShapes) {
     expect_matches_brute_force(test::make_torus(1.0, 0.3, 40, 16), 1.5, 1000, 3);
     expect_matches_brute_force(test::make_cube(1.0, 5), 3.0, 1000, 4);
+}
+
+// 20 480 triangles: the tree's halves are built as tasks, on two threads and on one. The trees
+// are the same, so the answers are, to the bit, and they match brute force.
+TEST(AabbTree, TreeBuiltOnSeveralThreadsAnswersAsOneBuiltOnOne) {
+    const Mesh mesh = test::make_icosphere(5);
+    ASSERT_GE(mesh.triangles.rows(), 16384);
+    std::unique_ptr<AabbTree> parallel, serial;
+    {
+        const ThreadCountScope two(2);
+        parallel = std::make_unique<AabbTree>(mesh);
+    }
+    {
+        const ThreadCountScope one(1);
+        serial = std::make_unique<AabbTree>(mesh);
+    }
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> coordinate(-1.5, 1.5);
+    for (int i = 0; i < 300; ++i) {
+        const Eigen::Vector3d q(coordinate(rng), coordinate(rng), coordinate(rng));
+        const ClosestPoint a = parallel->closest(q), b = serial->closest(q);
+        ASSERT_EQ(a.triangle, b.triangle) << "query " << i;
+        ASSERT_EQ(a.point, b.point) << "query " << i;
+        ASSERT_NEAR(a.squared_distance, brute_force_closest(mesh, q).squared_distance, 1e-12) << "query " << i;
+    }
 }
 
 TEST(AabbTree, VerticesAreAtDistanceZero) {

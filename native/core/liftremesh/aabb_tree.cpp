@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ struct Box {
         for (int k = 0; k < 3; ++k) {
             lo[k] = std::min(lo[k], p[k]);
             hi[k] = std::max(hi[k], p[k]);
+        }
+    }
+    void add(const Box& b) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b.lo[k]);
+            hi[k] = std::max(hi[k], b.hi[k]);
         }
     }
     static Box empty() {
@@ -57,6 +64,68 @@ double box_squared_distance(const Box& box, const Eigen::Vector3d& q) {
 // Sort key that keeps a strict weak order when a coordinate is NaN.
 double sort_key(double x) { return std::isnan(x) ? std::numeric_limits<double>::infinity() : x; }
 
+// Subtrees over at least this many triangles are built as OpenMP tasks, and the constructor's
+// loops run in parallel from this many triangles on.
+constexpr int32_t kParallelSize = 4096;
+
+//! Nodes below the root of a subtree over n triangles: none under a leaf, else its two children
+//! and theirs. Median splits give at most two sizes a level, which `known` keeps.
+int32_t nodes_below(int32_t n, std::map<int32_t, int32_t>& known) {
+    if (n <= kLeafSize) return 0;
+    if (const auto it = known.find(n); it != known.end()) return it->second;
+    const int32_t count = 2 + nodes_below(n / 2, known) + nodes_below(n - n / 2, known);
+    known.emplace(n, count);
+    return count;
+}
+
+//! Builds a tree into nodes sized for it beforehand, so that the two halves of a node can be
+//! built at once: each subtree's nodes are a range of its own, in depth-first order.
+struct Builder {
+    std::vector<Node>& nodes;
+    std::vector<int32_t>& order; //!< triangles in tree order once built
+    const std::vector<Eigen::Vector3d>& centroids;
+    const std::vector<std::array<Eigen::Vector3d, 3>>& triangles;
+    const std::map<int32_t, int32_t>& below; //!< nodes_below, for every subtree size of the tree
+
+    //! Builds the subtree of nodes[index] over order[begin, end), its nodes below it taken from
+    //! `next` on, splitting at the median centroid along the longest axis of the centroids' box.
+    void build(int32_t index, int32_t next, int32_t begin, int32_t end) {
+        Node& node = nodes[index];
+        if (end - begin <= kLeafSize) {
+            node.box = Box::empty();
+            for (int32_t i = begin; i < end; ++i)
+                for (const auto& p : triangles[order[i]]) node.box.add(p);
+            node.first = begin;
+            node.count = end - begin;
+            return;
+        }
+        Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+        Eigen::Vector3d chi = -clo;
+        for (int32_t i = begin; i < end; ++i) {
+            clo = clo.cwiseMin(centroids[order[i]]);
+            chi = chi.cwiseMax(centroids[order[i]]);
+        }
+        int axis = 0;
+        (chi - clo).maxCoeff(&axis);
+        const int32_t mid = begin + (end - begin) / 2;
+        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](int32_t s, int32_t t) {
+            return sort_key(centroids[s][axis]) < sort_key(centroids[t][axis]);
+        });
+        node.first = next;
+        node.count = 0;
+        const int32_t right_next = next + 2 + (mid - begin <= kLeafSize ? 0 : below.at(mid - begin));
+        // Shared: the halves write apart (order, nodes), and this call waits for them.
+#pragma omp task default(shared) if (mid - begin >= kParallelSize)
+        build(next, next + 2, begin, mid);
+#pragma omp task default(shared) if (end - mid >= kParallelSize)
+        build(next + 1, right_next, mid, end);
+#pragma omp taskwait
+        // The union of the halves' boxes: min and max are exact, so the same box as the corners'.
+        node.box = nodes[next].box;
+        node.box.add(nodes[next + 1].box);
+    }
+};
+
 } // namespace
 
 struct AabbTree::Impl {
@@ -65,74 +134,43 @@ struct AabbTree::Impl {
     std::vector<Box> boxes;               //!< bounding box of each triangle, in tree order
     std::vector<int32_t> ids;             //!< input triangle index, in tree order
     std::vector<Eigen::Vector3d> normals; //!< unit normal per input triangle, in input order
-
-    //! Builds the subtree of nodes[index] over order[begin, end), splitting at the median
-    //! centroid along the longest axis of the centroids' box.
-    void build(int32_t index, std::vector<int32_t>& order, const std::vector<Eigen::Vector3d>& centroids,
-               const std::vector<std::array<Eigen::Vector3d, 3>>& triangles, int32_t begin, int32_t end) {
-        Node node;
-        node.box = Box::empty();
-        Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-        Eigen::Vector3d chi = -clo;
-        for (int32_t i = begin; i < end; ++i) {
-            for (const auto& p : triangles[order[i]]) node.box.add(p);
-            clo = clo.cwiseMin(centroids[order[i]]);
-            chi = chi.cwiseMax(centroids[order[i]]);
-        }
-        if (end - begin <= kLeafSize) {
-            node.first = begin;
-            node.count = end - begin;
-            nodes[index] = node;
-            return;
-        }
-        int axis = 0;
-        (chi - clo).maxCoeff(&axis);
-        const int32_t mid = begin + (end - begin) / 2;
-        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](int32_t s, int32_t t) {
-            return sort_key(centroids[s][axis]) < sort_key(centroids[t][axis]);
-        });
-        const auto left = static_cast<int32_t>(nodes.size());
-        nodes.emplace_back();
-        nodes.emplace_back();
-        node.first = left;
-        node.count = 0;
-        nodes[index] = node;
-        build(left, order, centroids, triangles, begin, mid);
-        build(left + 1, order, centroids, triangles, mid, end);
-    }
 };
 
 AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     check_indices(mesh, "AABB tree");
-    const Eigen::Index nf = mesh.triangles.rows();
+    const auto nf = static_cast<int32_t>(mesh.triangles.rows());
+    if (nf == 0) return;
     std::vector<std::array<Eigen::Vector3d, 3>> triangles(static_cast<size_t>(nf));
     std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
-    for (Eigen::Index f = 0; f < nf; ++f) {
-        for (int j = 0; j < 3; ++j) {
-            triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
-        }
+    impl_->normals.resize(static_cast<size_t>(nf));
+#pragma omp parallel for schedule(static) if (nf >= kParallelSize)
+    for (int32_t f = 0; f < nf; ++f) {
+        for (int j = 0; j < 3; ++j) triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
         centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
+        impl_->normals[f] = liftremesh::triangle_normal(triangles[f][0], triangles[f][1], triangles[f][2]);
     }
-    if (nf == 0) return;
-    impl_->normals.reserve(static_cast<size_t>(nf));
-    for (const auto& t : triangles) impl_->normals.push_back(liftremesh::triangle_normal(t[0], t[1], t[2]));
 
     std::vector<int32_t> order(static_cast<size_t>(nf));
     std::iota(order.begin(), order.end(), 0);
-    impl_->nodes.reserve(2 * static_cast<size_t>(nf) / kLeafSize + 2);
-    impl_->nodes.emplace_back();
-    impl_->build(0, order, centroids, triangles, 0, static_cast<int32_t>(nf));
+    std::map<int32_t, int32_t> below;
+    impl_->nodes.resize(1 + static_cast<size_t>(nodes_below(nf, below)));
+    Builder builder{impl_->nodes, order, centroids, triangles, below};
+#pragma omp parallel if (nf >= kParallelSize)
+#pragma omp single
+    builder.build(0, 1, 0, nf);
 
     impl_->ids = order;
-    impl_->corners.reserve(3 * static_cast<size_t>(nf));
-    impl_->boxes.reserve(static_cast<size_t>(nf));
-    for (const int32_t f : order) {
+    impl_->corners.resize(3 * static_cast<size_t>(nf));
+    impl_->boxes.resize(static_cast<size_t>(nf));
+#pragma omp parallel for schedule(static) if (nf >= kParallelSize)
+    for (int32_t t = 0; t < nf; ++t) {
         Box box = Box::empty();
-        for (const auto& p : triangles[f]) {
-            impl_->corners.push_back(p);
+        for (int j = 0; j < 3; ++j) {
+            const Eigen::Vector3d& p = triangles[order[t]][j];
+            impl_->corners[3 * static_cast<size_t>(t) + j] = p;
             box.add(p);
         }
-        impl_->boxes.push_back(box);
+        impl_->boxes[t] = box;
     }
 }
 
