@@ -84,7 +84,7 @@ struct Builder {
     std::vector<Node>& nodes;
     std::vector<int32_t>& order; //!< triangles in tree order once built
     const std::vector<Eigen::Vector3d>& centroids;
-    const std::vector<std::array<Eigen::Vector3d, 3>>& triangles;
+    const std::vector<Box>& boxes; //!< per triangle, in input order
     const std::map<int32_t, int32_t>& below; //!< nodes_below, for every subtree size of the tree
 
     //! Builds the subtree of nodes[index] over order[begin, end), its nodes below it taken from
@@ -93,8 +93,7 @@ struct Builder {
         Node& node = nodes[index];
         if (end - begin <= kLeafSize) {
             node.box = Box::empty();
-            for (int32_t i = begin; i < end; ++i)
-                for (const auto& p : triangles[order[i]]) node.box.add(p);
+            for (int32_t i = begin; i < end; ++i) node.box.add(boxes[order[i]]);
             node.first = begin;
             node.count = end - begin;
             return;
@@ -142,10 +141,14 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     if (nf == 0) return;
     std::vector<std::array<Eigen::Vector3d, 3>> triangles(static_cast<size_t>(nf));
     std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
+    std::vector<Box> boxes(static_cast<size_t>(nf), Box::empty());
     impl_->normals.resize(static_cast<size_t>(nf));
 #pragma omp parallel for schedule(static) if (nf >= kParallelSize)
     for (int32_t f = 0; f < nf; ++f) {
-        for (int j = 0; j < 3; ++j) triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
+        for (int j = 0; j < 3; ++j) {
+            triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
+            boxes[f].add(triangles[f][j]);
+        }
         centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
         impl_->normals[f] = liftremesh::triangle_normal(triangles[f][0], triangles[f][1], triangles[f][2]);
     }
@@ -154,7 +157,7 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     std::iota(order.begin(), order.end(), 0);
     std::map<int32_t, int32_t> below;
     impl_->nodes.resize(1 + static_cast<size_t>(nodes_below(nf, below)));
-    Builder builder{impl_->nodes, order, centroids, triangles, below};
+    Builder builder{impl_->nodes, order, centroids, boxes, below};
 #pragma omp parallel if (nf >= kParallelSize)
 #pragma omp single
     builder.build(0, 1, 0, nf);
@@ -164,13 +167,8 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     impl_->boxes.resize(static_cast<size_t>(nf));
 #pragma omp parallel for schedule(static) if (nf >= kParallelSize)
     for (int32_t t = 0; t < nf; ++t) {
-        Box box = Box::empty();
-        for (int j = 0; j < 3; ++j) {
-            const Eigen::Vector3d& p = triangles[order[t]][j];
-            impl_->corners[3 * static_cast<size_t>(t) + j] = p;
-            box.add(p);
-        }
-        impl_->boxes[t] = box;
+        for (int j = 0; j < 3; ++j) impl_->corners[3 * static_cast<size_t>(t) + j] = triangles[order[t]][j];
+        impl_->boxes[t] = boxes[order[t]];
     }
 }
 
