@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -213,4 +214,33 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     }
     EXPECT_GT(found, 100);
     EXPECT_GT(none, 100);
+}
+
+TEST(AabbTree, OverlappingPairsAreExactlyThePairsWhoseBoxesMeetEachOnce) {
+    // A torus (1280 triangles, a tree of several levels) and a sphere through it, as one mesh.
+    Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
+    const Mesh s = liftremesh::test::make_icosphere(2, 0.5);
+    const auto nv = m.points.rows(), nf = m.triangles.rows();
+    m.points.conservativeResize(nv + s.points.rows(), 3);
+    m.points.bottomRows(s.points.rows()) = s.points.rowwise() + Eigen::RowVector3d(1.0, 0.0, 0.2);
+    m.triangles.conservativeResize(nf + s.triangles.rows(), 3);
+    m.triangles.bottomRows(s.triangles.rows()) = s.triangles.array() + static_cast<int32_t>(nv);
+    std::vector<Eigen::Vector3d> lo(m.triangles.rows()), hi(m.triangles.rows());
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+        lo[f] = hi[f] = m.points.row(m.triangles(f, 0)).transpose();
+        for (int j = 1; j < 3; ++j) {
+            lo[f] = lo[f].cwiseMin(m.points.row(m.triangles(f, j)).transpose());
+            hi[f] = hi[f].cwiseMax(m.points.row(m.triangles(f, j)).transpose());
+        }
+    }
+    std::vector<std::pair<int32_t, int32_t>> expected, visited;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (Eigen::Index g = f + 1; g < m.triangles.rows(); ++g)
+            if ((lo[f].array() <= hi[g].array()).all() && (lo[g].array() <= hi[f].array()).all())
+                expected.emplace_back(static_cast<int32_t>(f), static_cast<int32_t>(g));
+    AabbTree(m).overlapping_pairs([&](int32_t a, int32_t b) { visited.emplace_back(std::min(a, b), std::max(a, b)); });
+    std::sort(visited.begin(), visited.end());
+    EXPECT_TRUE(std::adjacent_find(visited.begin(), visited.end()) == visited.end()) << "a pair twice";
+    EXPECT_EQ(visited, expected);
+    EXPECT_GT(expected.size(), 3 * static_cast<size_t>(m.triangles.rows())); // neighbours, and where the two cross
 }

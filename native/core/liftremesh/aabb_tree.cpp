@@ -200,6 +200,57 @@ Eigen::Vector3d AabbTree::triangle_normal(int32_t triangle) const {
     return impl_->normals[static_cast<size_t>(triangle)];
 }
 
+namespace {
+
+//! Whether two closed boxes meet.
+bool boxes_meet(const Box& a, const Box& b) {
+    for (int k = 0; k < 3; ++k)
+        if (!(a.lo[k] <= b.hi[k] && b.lo[k] <= a.hi[k])) return false;
+    return true;
+}
+
+//! Sum of a box's sides.
+double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]); }
+
+} // namespace
+
+void AabbTree::overlapping_pairs(const std::function<void(int32_t, int32_t)>& visit) const {
+    const auto& nodes = impl_->nodes;
+    const auto& boxes = impl_->boxes;
+    if (nodes.empty()) return;
+    // Pending node pairs: (i, i) the pairs within node i, (i, j) those between two disjoint nodes.
+    std::vector<std::pair<int32_t, int32_t>> pending = {{0, 0}};
+    while (!pending.empty()) {
+        const auto [i, j] = pending.back();
+        pending.pop_back();
+        const Node &a = nodes[i], &b = nodes[j];
+        if (i == j) {
+            if (a.count > 0) {
+                for (int32_t s = a.first; s < a.first + a.count; ++s)
+                    for (int32_t t = s + 1; t < a.first + a.count; ++t)
+                        if (boxes_meet(boxes[s], boxes[t])) visit(impl_->ids[s], impl_->ids[t]);
+            } else {
+                pending.emplace_back(a.first, a.first);
+                pending.emplace_back(a.first + 1, a.first + 1);
+                pending.emplace_back(a.first, a.first + 1);
+            }
+            continue;
+        }
+        if (!boxes_meet(a.box, b.box)) continue;
+        if (a.count > 0 && b.count > 0) {
+            for (int32_t s = a.first; s < a.first + a.count; ++s)
+                for (int32_t t = b.first; t < b.first + b.count; ++t)
+                    if (boxes_meet(boxes[s], boxes[t])) visit(impl_->ids[s], impl_->ids[t]);
+        } else if (a.count == 0 && (b.count > 0 || extent(a.box) >= extent(b.box))) { // split the larger inner node
+            pending.emplace_back(a.first, j);
+            pending.emplace_back(a.first + 1, j);
+        } else {
+            pending.emplace_back(i, b.first);
+            pending.emplace_back(i, b.first + 1);
+        }
+    }
+}
+
 ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit,
                               const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept) const {
     const auto& nodes = impl_->nodes;

@@ -48,6 +48,11 @@ public:
     ClosestPoint closest_where(const Eigen::Vector3d& q, double r,
                                const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const;
 
+    //! Calls visit(s, t) once for each pair of triangles s != t (the mesh's indices, in either
+    //! order) whose bounding boxes meet: the tree against itself, node pairs whose boxes are
+    //! apart skipped whole. Single-threaded.
+    void overlapping_pairs(const std::function<void(int32_t, int32_t)>& visit) const;
+
     //! Unit normal of the mesh's triangle `triangle` (as ClosestPoint::triangle numbers it),
     //! in its orientation; zero for a degenerate triangle.
     Eigen::Vector3d triangle_normal(int32_t triangle) const;
