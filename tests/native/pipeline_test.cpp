@@ -7,6 +7,7 @@
 #include "liftremesh/quality.h"
 #include "liftremesh/report.h"
 #include "liftremesh/sampling.h"
+#include "liftremesh/self_intersection.h"
 #include "helpers.h"
 #include "topology_helpers.h"
 
@@ -213,6 +214,11 @@ TEST_P(SharedMesh, ClosedOrientedManifoldWithGoodTrianglesCloseToTheInput) {
     EXPECT_GE(out.kappa_mean, 0.90);
     EXPECT_GE(out.kappa_min, 0.30);
     EXPECT_LE(r.report.hausdorff_relative, 0.005);
+    // No triangle passes through another: a surface a tetrahedral mesher can fill. The inputs
+    // have none either, as the report says.
+    EXPECT_EQ(count_self_intersections(r.mesh, AabbTree(r.mesh)), 0);
+    EXPECT_EQ(out.self_intersections, 0);
+    EXPECT_EQ(r.report.input.self_intersections, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMesh,

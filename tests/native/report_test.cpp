@@ -48,7 +48,8 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
-          "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "extra_vertex_fans", "oriented", "euler_characteristic", "sharp_edge_length"})
+          "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "extra_vertex_fans", "oriented", "euler_characteristic", "sharp_edge_length",
+          "self_intersections"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 2u) << key;
     EXPECT_NE(json.find("\"kappa_histogram\": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"), std::string::npos) << json;
     EXPECT_NE(json.find("\"kappa_mean\": 0.483123457,"), std::string::npos) << json; // 9 digits
@@ -89,6 +90,18 @@ TEST(Report, WarnsOfAnotherTopologyNewHolesAndALargeDistance) {
     EXPECT_NE(r.warnings[1].find("2 boundary loops, the source 0"), std::string::npos) << r.warnings[1];
     EXPECT_NE(r.warnings[2].find("18 %"), std::string::npos) << r.warnings[2];
     EXPECT_NE(to_json(r).find("\"warnings\": [\"the result's topology differs"), std::string::npos) << to_json(r);
+}
+
+TEST(Report, WarnsOfTrianglesPassingThroughEachOtherWhateverTheInputHas) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = 2;
+    r.input.self_intersections = 424; // a soup (igl_truck.obj): still worth saying of the result
+    EXPECT_TRUE(report_warnings(r).empty());
+    r.output.self_intersections = 607;
+    const std::vector<std::string> w = report_warnings(r);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("607 pairs of triangles passing through each other (the source 424)"), std::string::npos) << w[0];
+    EXPECT_NE(to_json(r).find("\"self_intersections\": 607"), std::string::npos) << to_json(r);
 }
 
 TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {

@@ -19,6 +19,7 @@
 #include "liftremesh/repair.h"
 #include "liftremesh/rvd.h"
 #include "liftremesh/sampling.h"
+#include "liftremesh/self_intersection.h"
 #include "liftremesh/thin_walls.h"
 #include "liftremesh/threads.h"
 
@@ -125,6 +126,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("normals");
     const AabbTree input_tree(input); // thin walls here, distances to the input from the repair on
+    report.input.self_intersections = count_self_intersections(input, input_tree);
     const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
     const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
     LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
@@ -205,7 +207,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("quality");
     report.output = measure_quality(out);
-    const DistanceStats distance = hausdorff_distance(input, input_tree, out); // the tree of the repair stage
+    const AabbTree output_tree(out);
+    report.output.self_intersections = count_self_intersections(out, output_tree);
+    const DistanceStats distance = hausdorff_distance(input, input_tree, out, output_tree); // the input's: the repair stage's
     report.hausdorff_relative = distance.hausdorff / report.bbox_diagonal;
     report.mean_distance_relative = distance.mean / report.bbox_diagonal;
     clock.end();

@@ -214,11 +214,17 @@ DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples, std:
 }
 
 DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, int samples, std::uint64_t seed) {
+    check_mesh(b, "second"); // before the tree is built
+    return hausdorff_distance(a, a_tree, b, AabbTree(b), samples, seed);
+}
+
+DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, const AabbTree& b_tree,
+                                 int samples, std::uint64_t seed) {
     check_mesh(a, "first");
     check_mesh(b, "second");
     const std::vector<Eigen::Vector3d> on_a = sample_surface(a, samples, 2 * seed);
     const std::vector<Eigen::Vector3d> on_b = sample_surface(b, samples, 2 * seed + 1);
-    const std::vector<double> a_to_b = distances_to(on_a, AabbTree(b));
+    const std::vector<double> a_to_b = distances_to(on_a, b_tree);
     const std::vector<double> b_to_a = distances_to(on_b, a_tree);
 
     DistanceStats stats;

@@ -29,6 +29,9 @@ struct MeshQuality {
     bool oriented = true;                  //!< every manifold edge is used once in each direction
     int euler_characteristic = 0;          //!< V - E + F
     double sharp_edge_length = 0.0;        //!< total length of edges with dihedral angle > sharp_angle
+    //! Pairs of triangles passing through each other (count_self_intersections, which needs an
+    //! AABB tree: measure_quality leaves 0 here, the pipeline counts them for input and output).
+    long self_intersections = 0;
 };
 
 //! Measures `mesh`. `sharp_angle_deg` is the angle between the two face normals above which an
@@ -65,5 +68,8 @@ DistanceStats hausdorff_distance(const Mesh& a, const Mesh& b, int samples = kDi
 //! The same, with the AABB tree of `a` that the caller has built already (made from `a`).
 DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, int samples = kDistanceSamples,
                                  std::uint64_t seed = kDistanceSeed);
+//! The same, with the AABB trees of both (made from `a` and from `b`).
+DistanceStats hausdorff_distance(const Mesh& a, const AabbTree& a_tree, const Mesh& b, const AabbTree& b_tree,
+                                 int samples = kDistanceSamples, std::uint64_t seed = kDistanceSeed);
 
 } // namespace liftremesh

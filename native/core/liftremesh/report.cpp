@@ -81,7 +81,8 @@ std::string json_quality(const MeshQuality& q, int indent) {
                         {"extra_vertex_fans", json_number(q.extra_vertex_fans)},
                         {"oriented", q.oriented ? "true" : "false"},
                         {"euler_characteristic", json_number(static_cast<long>(q.euler_characteristic))},
-                        {"sharp_edge_length", json_number(q.sharp_edge_length)}},
+                        {"sharp_edge_length", json_number(q.sharp_edge_length)},
+                        {"self_intersections", json_number(q.self_intersections)}},
                        indent);
 }
 
@@ -131,6 +132,10 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
     if (out.boundary_loops > in.boundary_loops)
         found.push_back("the result has " + std::to_string(out.boundary_loops) + " boundary loops, the source " +
                         std::to_string(in.boundary_loops) + ": holes the source does not have");
+    if (out.self_intersections > 0)
+        found.push_back("the result has " + std::to_string(out.self_intersections) +
+                        " pairs of triangles passing through each other (the source " +
+                        std::to_string(in.self_intersections) + "): a tetrahedral mesher will refuse it");
     if (report.hausdorff_relative > kFarFromInput) {
         char text[160];
         std::snprintf(text, sizeof text, "the result is up to %.2g %% of the bounding-box diagonal away from the source",

@@ -58,7 +58,8 @@ int expected_euler_characteristic(const RemeshReport& report);
 //! The warnings of a finished report: another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
-//! (holes), or a Hausdorff distance above kFarFromInput. The input's cracks that the result
+//! (holes), triangles passing through each other (output.self_intersections, whatever the
+//! input's), or a Hausdorff distance above kFarFromInput. The input's cracks that the result
 //! closes (fewer boundary loops) and the non-manifold vertices it splits are not another
 //! topology: its Euler characteristic may be expected_euler_characteristic().
 std::vector<std::string> report_warnings(const RemeshReport& report);

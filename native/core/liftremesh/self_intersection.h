@@ -1,0 +1,27 @@
+// Triangles of a surface that pass through each other: what a tetrahedral mesher (TetGen,
+// Netgen, Gmsh) refuses in the surface it fills, and what FreeCAD's Mesh workbench reports as
+// self-intersections ("Evaluate and repair mesh").
+#pragma once
+
+#include "liftremesh/aabb_tree.h"
+#include "liftremesh/mesh.h"
+
+namespace liftremesh {
+
+//! Whether the segment pq passes through the inside of triangle abc: its ends strictly on
+//! either side of the triangle's plane, and the point where it crosses the plane strictly inside
+//! the triangle. "Strictly" allows a relative 1e-9 (distances to the plane against |pq|,
+//! barycentric coordinates), so touching, as neighbouring faces of a CAD tessellation do, is
+//! not crossing. A segment in the plane, or a degenerate triangle, crosses nothing.
+bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                              const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Pairs of triangles of `mesh` that cross: a side of one passes through the inside of the
+//! other (segment_crosses_triangle). Triangles sharing an edge are never a pair (a fold onto
+//! the neighbour lies in its plane); of two sharing a vertex only the sides away from it are
+//! tested. Coplanar overlaps are not counted. `tree` is AabbTree(mesh). Runs in parallel
+//! (OpenMP's default thread count); the count does not depend on it. Throws InvalidInput if an
+//! index is out of range.
+long count_self_intersections(const Mesh& mesh, const AabbTree& tree);
+
+} // namespace liftremesh
