@@ -238,9 +238,15 @@ TEST(AabbTree, OverlappingPairsAreExactlyThePairsWhoseBoxesMeetEachOnce) {
         for (Eigen::Index g = f + 1; g < m.triangles.rows(); ++g)
             if ((lo[f].array() <= hi[g].array()).all() && (lo[g].array() <= hi[f].array()).all())
                 expected.emplace_back(static_cast<int32_t>(f), static_cast<int32_t>(g));
-    AabbTree(m).overlapping_pairs([&](int32_t a, int32_t b) { visited.emplace_back(std::min(a, b), std::max(a, b)); });
+    AabbTree(m).overlapping_pairs([&](int32_t a, int32_t b) {
+        visited.emplace_back(std::min(a, b), std::max(a, b));
+        return true;
+    });
     std::sort(visited.begin(), visited.end());
     EXPECT_TRUE(std::adjacent_find(visited.begin(), visited.end()) == visited.end()) << "a pair twice";
     EXPECT_EQ(visited, expected);
     EXPECT_GT(expected.size(), 3 * static_cast<size_t>(m.triangles.rows())); // neighbours, and where the two cross
+    long calls = 0;
+    AabbTree(m).overlapping_pairs([&](int32_t, int32_t) { return ++calls < 10; });
+    EXPECT_EQ(calls, 10); // stopped when asked
 }

@@ -214,7 +214,7 @@ double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) +
 
 } // namespace
 
-void AabbTree::overlapping_pairs(const std::function<void(int32_t, int32_t)>& visit) const {
+void AabbTree::overlapping_pairs(const std::function<bool(int32_t, int32_t)>& visit) const {
     const auto& nodes = impl_->nodes;
     const auto& boxes = impl_->boxes;
     if (nodes.empty()) return;
@@ -228,7 +228,7 @@ void AabbTree::overlapping_pairs(const std::function<void(int32_t, int32_t)>& vi
             if (a.count > 0) {
                 for (int32_t s = a.first; s < a.first + a.count; ++s)
                     for (int32_t t = s + 1; t < a.first + a.count; ++t)
-                        if (boxes_meet(boxes[s], boxes[t])) visit(impl_->ids[s], impl_->ids[t]);
+                        if (boxes_meet(boxes[s], boxes[t]) && !visit(impl_->ids[s], impl_->ids[t])) return;
             } else {
                 pending.emplace_back(a.first, a.first);
                 pending.emplace_back(a.first + 1, a.first + 1);
@@ -240,7 +240,7 @@ void AabbTree::overlapping_pairs(const std::function<void(int32_t, int32_t)>& vi
         if (a.count > 0 && b.count > 0) {
             for (int32_t s = a.first; s < a.first + a.count; ++s)
                 for (int32_t t = b.first; t < b.first + b.count; ++t)
-                    if (boxes_meet(boxes[s], boxes[t])) visit(impl_->ids[s], impl_->ids[t]);
+                    if (boxes_meet(boxes[s], boxes[t]) && !visit(impl_->ids[s], impl_->ids[t])) return;
         } else if (a.count == 0 && (b.count > 0 || extent(a.box) >= extent(b.box))) { // split the larger inner node
             pending.emplace_back(a.first, j);
             pending.emplace_back(a.first + 1, j);

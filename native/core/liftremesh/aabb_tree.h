@@ -49,9 +49,9 @@ public:
                                const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const;
 
     //! Calls visit(s, t) once for each pair of triangles s != t (the mesh's indices, in either
-    //! order) whose bounding boxes meet: the tree against itself, node pairs whose boxes are
-    //! apart skipped whole. Single-threaded.
-    void overlapping_pairs(const std::function<void(int32_t, int32_t)>& visit) const;
+    //! order) whose bounding boxes meet, until it returns false: the tree against itself, node
+    //! pairs whose boxes are apart skipped whole. Single-threaded.
+    void overlapping_pairs(const std::function<bool(int32_t, int32_t)>& visit) const;
 
     //! Unit normal of the mesh's triangle `triangle` (as ClosestPoint::triangle numbers it),
     //! in its orientation; zero for a degenerate triangle.

@@ -76,12 +76,26 @@ bool cross(const Mesh& mesh, Eigen::Index f, Eigen::Index g) {
 
 long count_self_intersections(const Mesh& mesh, const AabbTree& tree) {
     check_indices(mesh, "self-intersection test");
-    std::vector<std::pair<int32_t, int32_t>> candidates; // triangles whose boxes meet
-    tree.overlapping_pairs([&](int32_t s, int32_t t) { candidates.emplace_back(s, t); });
-    const auto n = static_cast<long>(candidates.size());
-    long pairs = 0;
-#pragma omp parallel for schedule(static) reduction(+ : pairs)
-    for (long i = 0; i < n; ++i) pairs += cross(mesh, candidates[i].first, candidates[i].second) ? 1 : 0;
+    // Candidates (triangles whose boxes meet) tested in parallel a batch at a time: memory stays
+    // bounded, and a soup of long triangles all over each other's boxes stops at the budget.
+    constexpr size_t kBatch = size_t{1} << 16;
+    const long budget = kCandidatesPerTriangle * static_cast<long>(mesh.triangles.rows());
+    std::vector<std::pair<int32_t, int32_t>> batch;
+    long pairs = 0, seen = 0;
+    auto test_batch = [&]() {
+        const auto n = static_cast<long>(batch.size());
+        long found = 0;
+#pragma omp parallel for schedule(static) reduction(+ : found)
+        for (long i = 0; i < n; ++i) found += cross(mesh, batch[i].first, batch[i].second) ? 1 : 0;
+        pairs += found;
+        batch.clear();
+    };
+    tree.overlapping_pairs([&](int32_t s, int32_t t) {
+        batch.emplace_back(s, t);
+        if (batch.size() == kBatch) test_batch();
+        return ++seen < budget;
+    });
+    test_batch();
     return pairs;
 }
 
