@@ -126,7 +126,6 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     clock.begin("normals");
     const AabbTree input_tree(input); // thin walls here, distances to the input from the repair on
-    report.input.self_intersections = count_self_intersections(input, input_tree);
     const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
     const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
     LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
@@ -208,6 +207,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     clock.begin("quality");
     report.output = measure_quality(out);
     const AabbTree output_tree(out);
+    report.input.self_intersections = count_self_intersections(input, input_tree);
     report.output.self_intersections = count_self_intersections(out, output_tree);
     const DistanceStats distance = hausdorff_distance(input, input_tree, out, output_tree); // the input's: the repair stage's
     report.hausdorff_relative = distance.hausdorff / report.bbox_diagonal;
