@@ -218,13 +218,9 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
 
 TEST(AabbTree, OverlappingPairsAreExactlyThePairsWhoseBoxesMeetEachOnce) {
     // A torus (1280 triangles, a tree of several levels) and a sphere through it, as one mesh.
-    Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
-    const Mesh s = liftremesh::test::make_icosphere(2, 0.5);
-    const auto nv = m.points.rows(), nf = m.triangles.rows();
-    m.points.conservativeResize(nv + s.points.rows(), 3);
-    m.points.bottomRows(s.points.rows()) = s.points.rowwise() + Eigen::RowVector3d(1.0, 0.0, 0.2);
-    m.triangles.conservativeResize(nf + s.triangles.rows(), 3);
-    m.triangles.bottomRows(s.triangles.rows()) = s.triangles.array() + static_cast<int32_t>(nv);
+    Mesh sphere = liftremesh::test::make_icosphere(2, 0.5);
+    sphere.points.rowwise() += Eigen::RowVector3d(1.0, 0.0, 0.2);
+    const Mesh m = liftremesh::test::joined(liftremesh::test::make_torus(1.0, 0.3, 40, 16), sphere);
     std::vector<Eigen::Vector3d> lo(m.triangles.rows()), hi(m.triangles.rows());
     for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
         lo[f] = hi[f] = m.points.row(m.triangles(f, 0)).transpose();

@@ -102,17 +102,23 @@ inline Mesh make_cube(double s, int n) {
     return make_mesh(p, f);
 }
 
+//! The two meshes as one: a's points and triangles, then b's, its indices shifted past a's points.
+inline Mesh joined(const Mesh& a, const Mesh& b) {
+    Mesh both;
+    both.points.resize(a.points.rows() + b.points.rows(), 3);
+    both.points << a.points, b.points;
+    both.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
+    both.triangles << a.triangles, (b.triangles.array() + static_cast<int32_t>(a.points.rows())).matrix();
+    return both;
+}
+
 //! Two icospheres of radius 1 touching at one vertex: the second is the first reflected through
 //! its vertex 0, the two vertex lists welded there (chi 3, that vertex non-manifold).
 inline Mesh make_touching_spheres(int levels) {
     const Mesh a = make_icosphere(levels);
     Mesh b = a;
     b.points = (-a.points).rowwise() + 2.0 * a.points.row(0);
-    Mesh glued;
-    glued.points.resize(a.points.rows() + b.points.rows(), 3);
-    glued.points << a.points, b.points;
-    glued.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
-    glued.triangles << a.triangles, (b.triangles.array() + static_cast<int32_t>(a.points.rows())).matrix();
+    Mesh glued = joined(a, b);
     // b's vertex 0 is a's vertex 0: refer to a's.
     for (Eigen::Index f = a.triangles.rows(); f < glued.triangles.rows(); ++f)
         for (int j = 0; j < 3; ++j)

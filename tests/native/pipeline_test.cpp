@@ -171,13 +171,10 @@ TEST(Remesh, TheThreadCountHoldsInEveryStageAndIsGivenBack) {
 // triangulation joined them: chi 0, -4, -2 (seeds 1 to 3) instead of 4, measured without
 // thin_walls.h.
 TEST(Remesh, PlatesCloserThanTheEdgeLengthStayApart) {
-    Mesh plates = test::make_cube(0.5, 8), upper = plates;
-    plates.points.col(2) *= 0.05;
-    upper.points.col(2) = plates.points.col(2).array() + 0.06;
-    plates.points.conservativeResize(2 * upper.points.rows(), 3);
-    plates.points.bottomRows(upper.points.rows()) = upper.points;
-    plates.triangles.conservativeResize(2 * upper.triangles.rows(), 3);
-    plates.triangles.bottomRows(upper.triangles.rows()) = upper.triangles.array() + static_cast<int32_t>(upper.points.rows());
+    Mesh lower = test::make_cube(0.5, 8), upper = lower;
+    lower.points.col(2) *= 0.05;
+    upper.points.col(2) = lower.points.col(2).array() + 0.06;
+    const Mesh plates = test::joined(lower, upper);
     for (unsigned seed : {1u, 2u, 3u}) {
         const RemeshResult r = remesh(plates, params_with(150, 5.0, seed));
         const test::Topology t = test::topology(r.mesh);

@@ -40,11 +40,7 @@ TEST(RestrictedDelaunay, PiecesOfACellOnTwoSidesOfAThinPlateGetAVertexEach) {
     Mesh bottom = test::make_square(1.0, 8), top = test::make_square(1.0, 8);
     top.points.col(2).setConstant(gap);
     top.triangles.col(1).swap(top.triangles.col(2)); // facing up: the two sides of a plate
-    Mesh plate;
-    plate.points.resize(2 * bottom.points.rows(), 3);
-    plate.points << bottom.points, top.points;
-    plate.triangles.resize(2 * bottom.triangles.rows(), 3);
-    plate.triangles << bottom.triangles, (top.triangles.array() + static_cast<int32_t>(bottom.points.rows())).matrix();
+    const Mesh plate = test::joined(bottom, top);
     const LiftedSurface s = make_lifted_surface(plate.points, plate.triangles);
     LiftedPoints sites(25, 3); // a jittered 5 x 5 grid on the bottom side
     for (int j = 0; j < 5; ++j)

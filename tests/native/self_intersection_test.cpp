@@ -93,12 +93,9 @@ TEST(SelfIntersection, TheTreeFindsWhatEveryPairFinds) {
     EXPECT_GT(expected, 20);
     EXPECT_EQ(count(m), expected);
     // Two spheres through each other, as one mesh: the pairs where they cross.
-    const Mesh s = test::make_icosphere(2);
-    Mesh two = s;
-    two.points.conservativeResize(2 * s.points.rows(), 3);
-    two.points.bottomRows(s.points.rows()) = s.points.rowwise() + Eigen::RowVector3d(0.9, 0.1, 0.05);
-    two.triangles.conservativeResize(2 * s.triangles.rows(), 3);
-    two.triangles.bottomRows(s.triangles.rows()) = s.triangles.array() + static_cast<int32_t>(s.points.rows());
+    Mesh moved = test::make_icosphere(2);
+    moved.points.rowwise() += Eigen::RowVector3d(0.9, 0.1, 0.05);
+    const Mesh two = test::joined(test::make_icosphere(2), moved);
     const long crossing = brute_force_count(two);
     EXPECT_GT(crossing, 0);
     EXPECT_EQ(count(two), crossing);

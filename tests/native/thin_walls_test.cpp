@@ -29,11 +29,7 @@ Mesh make_wedge(double degrees) {
     below.triangles.col(1).swap(below.triangles.col(2)); // normal -z
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
     above.points = (above.points * turn.transpose()).eval();
-    Mesh wedge;
-    wedge.points.resize(below.points.rows() + above.points.rows(), 3);
-    wedge.points << below.points, above.points;
-    wedge.triangles.resize(below.triangles.rows() + above.triangles.rows(), 3);
-    wedge.triangles << below.triangles, (above.triangles.array() + static_cast<int32_t>(below.points.rows())).matrix();
+    Mesh wedge = test::joined(below, above);
     weld_exact(wedge);
     return wedge;
 }
