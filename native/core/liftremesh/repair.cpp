@@ -216,7 +216,7 @@ public:
         for (long e = 0; e < edges_.size(); ++e) {
             live_on(static_cast<int>(e), live);
             if (live.size() != 2) continue;
-            const auto a = static_cast<int32_t>(keys_[e] >> 32), b = static_cast<int32_t>(keys_[e] & 0xffffffffu);
+            const int32_t a = edges_.a[e], b = edges_.b[e];
             if (traverses(tris_[live[0]], a, b) != traverses(tris_[live[1]], a, b)) continue;
             const int worse = kappa(live[0]) < kappa(live[1]) ? live[0] : live[1];
             alive_[worse] = 0;
