@@ -12,13 +12,16 @@ from . import parameters
 
 FEATURE_TYPE = "Mesh::FeaturePython"
 
-# Read-only properties that show the last result's quality: name -> (type, group, path in report, help)
+# Read-only properties that show the last result's quality: name -> (type, path in report, help)
 QUALITY_PROPERTIES = {
     "KappaMin": ("App::PropertyFloat", ("output", "kappa_min"), "smallest triangle aspect ratio (Eq. 26, 1 = equilateral)"),
     "KappaMean": ("App::PropertyFloat", ("output", "kappa_mean"), "mean triangle aspect ratio (Eq. 26)"),
     "MinAngle": ("App::PropertyFloat", ("output", "min_angle_deg"), "smallest triangle angle (degrees)"),
     "HausdorffRelative": ("App::PropertyFloat", ("hausdorff_relative",),
                           "two-sided Hausdorff distance to the source / its bounding-box diagonal"),
+    "SelfIntersections": ("App::PropertyInteger", ("output", "self_intersections"),
+                          "pairs of triangles passing through each other: 0 for a surface to fill with "
+                          "tetrahedra (-1: not counted, a result saved before the count)"),
     "Report": ("App::PropertyString", (), "the full quality report (JSON, as the command-line tool writes it)"),
 }
 
@@ -74,6 +77,21 @@ class RemeshFeature(StatelessProxy):
             if prop not in obj.PropertiesList:
                 obj.addProperty(kind, prop, "Quality", doc)
                 obj.setEditorMode(prop, 1)  # read-only
+                obj.setPropertyStatus(prop, "Output")  # setting it asks for no recompute
+
+    def onDocumentRestored(self, obj):
+        # A document saved by an earlier version lacks the properties added since: they are added
+        # and, for a quality figure, read from the stored report (-1 where it lacks the figure too).
+        missing = [prop for prop in QUALITY_PROPERTIES if prop not in obj.PropertiesList]
+        self.add_properties(obj, obj.Mode if "Mode" in obj.PropertiesList else "isotropic")
+        try:
+            report = json.loads(obj.Report)
+        except ValueError:
+            report = {}
+        for prop in missing:
+            kind, path, _ = QUALITY_PROPERTIES[prop]
+            if path:
+                _set_quality(obj, prop, kind, _lookup(report, path), missing=-1)
 
     def onChanged(self, obj, prop):
         # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.
@@ -118,14 +136,27 @@ def set_params(obj, params):
 def apply_result(obj, result):
     """Sets a feature's mesh and quality properties from a Result."""
     obj.Mesh = result.mesh
-    for prop, (_, path, _) in QUALITY_PROPERTIES.items():
+    for prop, (kind, path, _) in QUALITY_PROPERTIES.items():
         if prop == "Report":
             obj.Report = json.dumps(result.report, indent=2)
-            continue
-        value = result.report
-        for key in path:
-            value = value[key]
-        setattr(obj, prop, float(value) if value is not None else 0.0)
+        else:
+            _set_quality(obj, prop, kind, _lookup(result.report, path), missing=0)
+
+
+def _lookup(report, path):
+    """report[path[0]][path[1]]...; None where a key is missing."""
+    value = report
+    for key in path:
+        if not isinstance(value, dict) or key not in value:
+            return None
+        value = value[key]
+    return value
+
+
+def _set_quality(obj, prop, kind, value, missing):
+    """Sets a quality property to a report figure (`missing` when the report has none)."""
+    number = int if kind == "App::PropertyInteger" else float
+    setattr(obj, prop, number(missing if value is None else value))
 
 
 def create_feature(doc, source, params, result=None):

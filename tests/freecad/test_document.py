@@ -1,6 +1,7 @@
 """Document behaviour of the macro API: features created named after their sources, one undo
 removes them, a failure of any kind leaves the document exactly as it was, and the feature is
 parametric (recomputes when its source or parameters change, survives save and reload)."""
+import json
 import os
 import tempfile
 import unittest
@@ -57,6 +58,9 @@ class DocumentTest(unittest.TestCase):
             self.assertGreater(obj.Mesh.CountFacets, 1000)
             self.assertTrue(obj.Mesh.isSolid())
             self.assertGreater(obj.KappaMin, 0.3)
+            # none by the report, and none by FreeCAD's own check (Mesh workbench's evaluation)
+            self.assertEqual(obj.SelfIntersections, 0)
+            self.assertFalse(obj.Mesh.hasSelfIntersections())
             self.assertFalse(obj.isValid() is False)
             self.assertNotIn("Touched", obj.State)  # computed once, not again on recompute
         self.assertEqual(self.doc.UndoNames, ["Remesh"])
@@ -169,6 +173,32 @@ class DocumentTest(unittest.TestCase):
             obj.Vertices = 700
             self.doc.recompute()
             self.assertAlmostEqual(obj.Mesh.CountPoints, 700, delta=20)
+
+    def test_a_document_saved_before_a_quality_property_gains_it_on_reload(self):
+        obj = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=400)[0]
+        other = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=300)[0]
+        # as an earlier version saved them: no SelfIntersections, and for `other` a report without it
+        for saved in (obj, other):
+            saved.removeProperty("SelfIntersections")
+        report = json.loads(other.Report)
+        del report["output"]["self_intersections"]
+        other.Report = json.dumps(report)
+        names = obj.Name, other.Name
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "older.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+        obj, other = (self.doc.getObject(name) for name in names)
+        for restored in (obj, other):
+            self.assertNotIn("Touched", restored.State)  # opening a document does not ask for a recompute
+        self.assertEqual(obj.SelfIntersections, 0)  # read from the stored report
+        self.assertEqual(other.SelfIntersections, -1)  # not counted
+        self.assertEqual(obj.getGroupOfProperty("SelfIntersections"), "Quality")
+        self.assertIn("ReadOnly", obj.getEditorMode("SelfIntersections"))
+        other.Vertices = 350
+        self.doc.recompute()
+        self.assertEqual(other.SelfIntersections, 0)  # counted by the new run
 
 
 if __name__ == "__main__":

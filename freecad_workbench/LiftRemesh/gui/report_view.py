@@ -15,6 +15,7 @@ ROWS = (
     ("boundary edges", "boundary_edges", "{:d}"),
     ("boundary loops", "boundary_loops", "{:d}"),
     ("Euler char. χ", "euler_characteristic", "{:d}"),
+    ("self-intersections", "self_intersections", "{:d}"),
 )
 
 
