@@ -5,7 +5,8 @@
 
 With --check, exits 1 when the output is not an oriented 2-manifold with the input's Euler
 characteristic (plus one per crack of the input it closes and per fan of a non-manifold vertex of
-the input it splits) and, for a closed input, closed.
+the input it splits) and, for a closed input, closed; or when it has triangles passing through
+each other and the input has none.
 Exits 2 when the report cannot be read or lacks a key.
 """
 
@@ -35,10 +36,11 @@ def summarise(report):
     inp, out = report["input"], report["output"]
     lines = [quality_line("input ", inp), quality_line("output", out)]
     lines.append("topology: Euler characteristic %d -> %d, boundary loops %d -> %d (%d edges), "
-                 "%d non-manifold edges"
+                 "%d non-manifold edges, self-intersections %d -> %d"
                  % (inp["euler_characteristic"], out["euler_characteristic"],
                     inp.get("boundary_loops", 0), out.get("boundary_loops", 0),
-                    out["boundary_edges"], out["nonmanifold_edges"]))
+                    out["boundary_edges"], out["nonmanifold_edges"],
+                    inp["self_intersections"], out["self_intersections"]))
     lines.append("fidelity: Hausdorff %s%% of the bounding-box diagonal; sharp-edge length "
                  "%s -> %s" % (num(report["hausdorff_relative"], ".3f", 100.0),
                                num(inp["sharp_edge_length"], ".4g"),
@@ -70,6 +72,16 @@ def topology_problems(report):
     return problems
 
 
+def crossing_problem(report):
+    """A sentence when the output has triangles passing through each other and the input has
+    none (a tetrahedral mesher refuses such a surface), else None."""
+    inp, out = report["input"], report["output"]
+    if out["self_intersections"] > 0 and inp["self_intersections"] == 0:
+        return ("%d pairs of triangles pass through each other, the input's none"
+                % out["self_intersections"])
+    return None
+
+
 def main(argv):
     args = [a for a in argv if a != "--check"]
     if len(args) != 1:
@@ -80,6 +92,7 @@ def main(argv):
             report = json.load(f)
         lines = summarise(report)
         problems = topology_problems(report)
+        crossing = crossing_problem(report)
         closed, split = report["cracks_closed"], report["vertex_fans_split"]
     except (OSError, ValueError, KeyError, TypeError) as e:
         sys.stderr.write("report_summary: cannot read %s: %s: %s\n" % (args[0], type(e).__name__, e))
@@ -87,12 +100,14 @@ def main(argv):
     print("\n".join(lines))
     if problems:
         print("check : NOT the input's topology: " + "; ".join(problems))
-        return 1 if "--check" in argv else 0
-    print("check : %s 2-manifold with the input's topology"
-          % ("closed" if report["output"]["boundary_edges"] == 0 else "open")
-          + (", %d crack(s) of the input closed" % closed if closed else "")
-          + (", %d fan(s) of its non-manifold vertices split" % split if split else ""))
-    return 0
+    else:
+        print("check : %s 2-manifold with the input's topology"
+              % ("closed" if report["output"]["boundary_edges"] == 0 else "open")
+              + (", %d crack(s) of the input closed" % closed if closed else "")
+              + (", %d fan(s) of its non-manifold vertices split" % split if split else ""))
+    if crossing:
+        print("check : NOT free of self-intersections: " + crossing)
+    return 1 if (problems or crossing) and "--check" in argv else 0
 
 
 if __name__ == "__main__":
