@@ -94,6 +94,10 @@ TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
     std::ofstream(garbage) << "this is not\na mesh at all\n";
     const fs::path folder = dir / "folder.stl"; // a directory with a mesh's name
     fs::create_directories(folder);
+    Mesh far = test::make_icosphere(2); // a corrupt coordinate: one vertex 1e25 away
+    far.points(5, 2) = 1e25;
+    const fs::path far_off = dir / "far.off";
+    write_mesh(far_off.string(), far);
     const std::vector<std::pair<std::string, std::string>> cases = {
         {(dir / "missing.stl").string() + " " + out, "missing.stl"},
         {garbage.string() + " " + out, "garbage.stl"},
@@ -109,6 +113,8 @@ TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {
         {in + " " + (dir / "no_such_dir" / "o.stl").string(), "no_such_dir"},
         {in + " " + out + " --report " + (dir / "no_such_dir" / "r.json").string(), "no_such_dir"},
         {in + " " + folder.string(), "is a directory"},
+        // Refused in the prepare stage, whose progress line --quiet leaves out.
+        {far_off.string() + " " + out + " --quiet", "far from the rest"},
     };
     for (const auto& [args, named] : cases) {
         const CliRun r = run(args);

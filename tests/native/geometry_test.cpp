@@ -128,3 +128,30 @@ TEST(Mesh, EdgeCountsAndUsesAreSortedPairsWithTheirTriangles) {
     EXPECT_THROW(edge_counts(negative), InvalidInput);
     EXPECT_THROW(edge_uses(fin, std::vector<char>(3, 1)), InvalidInput); // 4 triangles, 3 flags
 }
+
+// A vertex far from the rest (a corrupt coordinate) is refused with its coordinates; a part of any
+// size, or two parts far apart, is not: the test is of the bounding box against the median edge.
+TEST(Mesh, CheckExtentRefusesAVertexFarFromTheRest) {
+    Mesh sphere = test::make_icosphere(2); // unit radius, median edge about 0.3
+    EXPECT_NO_THROW(check_extent(sphere, "input"));
+    for (double scale : {1e-12, 1e12}) {
+        Mesh scaled = sphere;
+        scaled.points *= scale;
+        EXPECT_NO_THROW(check_extent(scaled, "input")) << scale;
+    }
+    Mesh apart = sphere; // a second sphere 1e8 away: 3e8 median edges, accepted
+    apart.points.rowwise() += Eigen::RowVector3d(1e8, 0.0, 0.0);
+    EXPECT_NO_THROW(check_extent(test::joined(sphere, apart), "input"));
+
+    Mesh corrupt = sphere;
+    corrupt.points(7, 1) = -4e9; // 1.3e10 median edges from the rest
+    try {
+        check_extent(corrupt, "input");
+        ADD_FAILURE() << "a vertex 4e9 away from a unit sphere is accepted";
+    } catch (const InvalidInput& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("input mesh spans 4e+09"), std::string::npos) << message;
+        EXPECT_NE(message.find(", -4e+09, "), std::string::npos) << message; // its coordinates
+        EXPECT_NE(message.find("far from the rest"), std::string::npos) << message;
+    }
+}

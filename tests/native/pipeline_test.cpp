@@ -135,6 +135,9 @@ TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     bad = input;
     bad.points(3, 0) = std::nan("");
     EXPECT_THROW(remesh(bad, p), InvalidInput);
+    bad = input;
+    bad.points(3, 0) = 1e25; // a corrupt coordinate (check_extent)
+    EXPECT_THROW(remesh(bad, p), InvalidInput);
     p.sigma = 0.5;
     EXPECT_THROW(remesh(input, p), InvalidInput);
 }

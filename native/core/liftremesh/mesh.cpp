@@ -4,6 +4,7 @@
 #include "liftremesh/geometry.h"
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 
 namespace liftremesh {
@@ -206,6 +207,36 @@ void check_indices(const Mesh& mesh, const std::string& what) {
                 throw InvalidInput(what + ": triangle " + std::to_string(f) + " refers to vertex " + std::to_string(i) +
                                    ", expected an index in [0, " + std::to_string(n) + ")");
         }
+}
+
+void check_extent(const Mesh& mesh, const char* what) {
+    const Eigen::Index m = mesh.triangles.rows(), n = mesh.points.rows();
+    if (m == 0 || n == 0) return;
+    std::vector<double> sides(3 * static_cast<size_t>(m));
+    for (Eigen::Index f = 0; f < m; ++f)
+        for (int j = 0; j < 3; ++j)
+            sides[3 * f + j] =
+                (mesh.points.row(mesh.triangles(f, j)) - mesh.points.row(mesh.triangles(f, (j + 1) % 3))).norm();
+    auto middle = sides.begin() + static_cast<std::ptrdiff_t>(sides.size() / 2);
+    std::nth_element(sides.begin(), middle, sides.end());
+    const double median_side = *middle, diagonal = bounding_box_diagonal(mesh.points);
+    if (!(median_side > 0.0) || diagonal <= kMaxExtentRatio * median_side) return;
+    Eigen::RowVector3d centre;
+    std::vector<double> axis(static_cast<size_t>(n));
+    for (int k = 0; k < 3; ++k) {
+        for (Eigen::Index i = 0; i < n; ++i) axis[i] = mesh.points(i, k);
+        std::nth_element(axis.begin(), axis.begin() + n / 2, axis.end());
+        centre[k] = axis[n / 2];
+    }
+    Eigen::Index far = 0;
+    (mesh.points.rowwise() - centre).rowwise().squaredNorm().maxCoeff(&far);
+    std::ostringstream message;
+    message.precision(3);
+    message << what << " mesh spans " << diagonal << " (bounding-box diagonal), more than " << kMaxExtentRatio
+            << " times its median edge length " << median_side << ": the vertex at ("
+            << mesh.points(far, 0) << ", " << mesh.points(far, 1) << ", " << mesh.points(far, 2)
+            << ") is far from the rest (a corrupt file?)";
+    throw InvalidInput(message.str());
 }
 
 void remove_unreferenced_vertices(Mesh& mesh) {

@@ -126,6 +126,17 @@ void check_indices(const Mesh& mesh, const std::string& what);
 //! finite, or the mesh is empty. `what` names the mesh in the message ("input", "output").
 void check_mesh(const Mesh& mesh, const char* what);
 
+//! Largest bounding-box diagonal over median edge length that check_extent accepts: about a
+//! thousand kilometres of 1 mm triangles. Beyond it a vertex lies far from the rest, as a corrupt
+//! file puts one, and the surface itself is a speck in its own bounding box.
+constexpr double kMaxExtentRatio = 1e9;
+
+//! Throws InvalidInput when the bounding box of the mesh's vertices is more than kMaxExtentRatio
+//! times its median triangle side, giving the coordinates of the vertex farthest from the per-axis
+//! median point (indices change with the welding of duplicates).
+//! Every vertex counts: call it once the unreferenced ones are removed. `what` names the mesh.
+void check_extent(const Mesh& mesh, const char* what);
+
 //! Drops vertices no triangle references and renumbers the triangles.
 void remove_unreferenced_vertices(Mesh& mesh);
 

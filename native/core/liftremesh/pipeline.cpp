@@ -112,6 +112,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     weld_exact(input);
     remove_unreferenced_vertices(input);
     if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
+    check_extent(input, "input");
     const long sites_wanted = target_site_count(params, surface_area(input));
     check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
     report.input = measure_quality(input);
