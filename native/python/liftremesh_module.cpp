@@ -38,6 +38,9 @@ PyObject* new_exception(py::module_& m, const char* name, PyObject* bases, const
 
 // (n, 3) float64 points: any real dtype is accepted and converted; shape and finiteness checked.
 Points to_points(const py::handle& obj) {
+    // forcecast would drop the imaginary part of a complex array without a word
+    if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
+        throw InvalidInput("points must be real numbers, got a complex array");
     py::array_t<double, py::array::c_style | py::array::forcecast> a;
     try {
         a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);

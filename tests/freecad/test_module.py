@@ -68,6 +68,9 @@ class ModuleTest(unittest.TestCase):
             ((self.points * np.nan, self.triangles), "not finite"),
             ((self.points, self.triangles[:, :2]), "shape"),
             (("not an array", self.triangles), "points"),
+            ((self.points + 1j, self.triangles), "complex"),
+            ((np.vstack([self.points, [[1e30, 0.0, 0.0]]]), np.vstack([self.triangles, [[0, 1, len(self.points)]]])),
+             "far from the rest"),
         ]
         for args, words in cases:
             with self.subTest(words=words):
