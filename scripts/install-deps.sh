@@ -17,6 +17,7 @@ packages=(
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
   calculix-ccx      # CalculiX solver: the FEM hand-off test runs a static shell analysis
+  tetgen            # TetGen: tests fill remeshed surfaces with tetrahedra (tests/native/tetgen_test.cpp)
 )
 
 installed() {

@@ -226,4 +226,14 @@ inline std::string shared_mesh(const std::string& name) {
     const std::string var = ::liftremesh::test::shared_mesh(name);                           \
     if (var.empty()) GTEST_SKIP() << "../shared/meshes/" << name << " not found beside the repository"
 
+//! The four CAD meshes in ../shared/meshes that the acceptance criteria name.
+inline const std::vector<const char*> kAcceptanceMeshes = {"gmsh_t13_data.stl", "netgen_hinge.stl", "gmsh_lever.stl",
+                                                           "pmp_fandisk.off"};
+
+//! Name of a test instantiated on a mesh file: the file name without its extension.
+inline std::string mesh_name(const ::testing::TestParamInfo<const char*>& info) {
+    const std::string name = info.param;
+    return name.substr(0, name.find('.'));
+}
+
 } // namespace liftremesh::test
