@@ -118,6 +118,21 @@ TEST(Remesh, AnOpenSurfaceKeepsItsBordersWithoutAWarning) {
     EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
 }
 
+// A long needle far from a small open part: its boundary is a million target edge lengths long,
+// and sampling it at a quarter of the hole test's reach took 1.9 GB at 2000 vertices and 9.9 GB
+// at 50000 (two triangles 1e5 long). The samples are now capped (segment_sample_spacing), spaced
+// wider, and the test allows for the wider spacing: the part's border is still its own and
+// stays open, where without the allowance it was filled as a hole.
+TEST(Remesh, ANeedleFarFromASmallOpenPartKeepsThePartOpen) {
+    const Mesh square = test::make_square(1.0, 10);
+    const Mesh needle = test::make_mesh({{2.0, 0.0, 0.0}, {2.0 + 1e6, 0.0, 0.0}, {2.0 + 1e6, 1e-8, 0.0}, {2.0, 1e-8, 0.0}},
+                                        {{0, 1, 2}, {0, 2, 3}});
+    const RemeshResult r = remesh(test::joined(square, needle), params_with(2000));
+    EXPECT_EQ(r.report.holes_filled, 0);
+    EXPECT_EQ(r.report.output.boundary_loops, 1); // the square's border; the needle is too thin to keep
+    EXPECT_FALSE(r.report.warnings.empty()); // and the result says so
+}
+
 TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     const Mesh input = test::make_icosphere(2);
     RemeshParams p = params_with(200);

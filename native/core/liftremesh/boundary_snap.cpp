@@ -143,7 +143,11 @@ private:
 class SegmentSearch {
 public:
     SegmentSearch(const Mesh& mesh, const std::vector<Edge>& segments, double spacing)
-        : mesh_(mesh), segments_(segments), half_spacing_(0.5 * spacing) {
+        : mesh_(mesh), segments_(segments) {
+        double length = 0.0;
+        for (const Edge& s : segments) length += (position(mesh, s.first) - position(mesh, s.second)).norm();
+        spacing = segment_sample_spacing(length, spacing);
+        half_spacing_ = 0.5 * spacing;
         std::vector<Eigen::Vector3d> samples;
         for (size_t i = 0; i < segments.size(); ++i) {
             const Eigen::Vector3d a = position(mesh, segments[i].first), b = position(mesh, segments[i].second);

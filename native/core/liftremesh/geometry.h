@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -46,6 +47,16 @@ double triangle_kappa(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
 
 //! Smallest interior angle of a 3D triangle, in degrees (0 for a degenerate one).
 double triangle_min_angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+//! Most points a set of segments (a mesh's boundary or creases) is sampled at: 2^20, 24 MiB.
+//! Segments of total length L are sampled at most max(spacing, L / kMaxSegmentSamples) apart
+//! (segment_sample_spacing): the spacing asked for on any sensible input, a wider one where
+//! the segments are many spacings long (a long needle beside a small part), instead of
+//! gigabytes of samples. Searches allow for the spacing used, so only their speed changes.
+constexpr double kMaxSegmentSamples = 1 << 20;
+inline double segment_sample_spacing(double total_length, double spacing) {
+    return std::max(spacing, total_length / kMaxSegmentSamples);
+}
 
 //! Closest point to p on the segment [a, b] in 3D (a itself when a == b).
 Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);

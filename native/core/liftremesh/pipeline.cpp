@@ -5,6 +5,7 @@
 #include "liftremesh/density.h"
 #include "liftremesh/edge_collapse.h"
 #include "liftremesh/exceptions.h"
+#include "liftremesh/geometry.h"
 #include "liftremesh/hausdorff_refinement.h"
 #include "liftremesh/hole_filling.h"
 #include "liftremesh/memory_budget.h"
@@ -59,26 +60,36 @@ private:
 // Which holes of the output to fill (Section 5.2.2): those the input does not have. A boundary
 // loop of the output that mostly runs within `reach` of a boundary edge of the input is the
 // input's own boundary (an open surface) and stays open; any other loop is a gap artefact.
+// The boundary edges are sampled `step` apart: a point within `reach` of one is within reach +
+// step / 2 of a sample.
 std::function<bool(const std::vector<int32_t>&)> hole_is_artefact(const Mesh& input, const Points& output_points,
                                                                   double reach) {
+    std::vector<EdgeCount> boundary;
+    double length = 0.0;
+    for (const EdgeCount& e : edge_counts(input.triangles))
+        if (e.count == 1) {
+            boundary.push_back(e);
+            length += (input.points.row(e.a) - input.points.row(e.b)).norm();
+        }
+    if (boundary.empty()) return {}; // closed input: every hole is an artefact
+    const double step = segment_sample_spacing(length, 0.25 * reach);
     std::vector<Eigen::Vector3d> samples;
-    for (const EdgeCount& e : edge_counts(input.triangles)) {
-        if (e.count != 1) continue;
+    for (const EdgeCount& e : boundary) {
         const Eigen::Vector3d a = input.points.row(e.a).transpose(), b = input.points.row(e.b).transpose();
-        const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.25 * reach))));
+        const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
         for (int i = 0; i <= steps; ++i) samples.push_back(a + (b - a) * (static_cast<double>(i) / steps));
     }
-    if (samples.empty()) return {}; // closed input: every hole is an artefact
     LiftedPoints pts(static_cast<Eigen::Index>(samples.size()), 3);
     for (size_t i = 0; i < samples.size(); ++i) pts.row(static_cast<Eigen::Index>(i)) = samples[i].transpose();
     auto tree = std::make_shared<KdTree>(pts);
-    return [tree, &output_points, reach](const std::vector<int32_t>& loop) {
+    const double near_enough = step > 0.25 * reach ? reach + 0.5 * step : reach; // as before where the budget holds
+    return [tree, &output_points, near_enough](const std::vector<int32_t>& loop) {
         long near = 0;
         for (int32_t v : loop) {
             int32_t i;
             double d2;
             tree->knn(output_points.row(v).data(), 1, &i, &d2);
-            if (d2 <= reach * reach) ++near;
+            if (d2 <= near_enough * near_enough) ++near;
         }
         return 2 * near < static_cast<long>(loop.size());
     };
