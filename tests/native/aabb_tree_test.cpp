@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -180,6 +181,46 @@ TEST(AabbTree, AnyWithinFindsATriangleExactlyWhenOneIsNearerThanTheRadius) {
     EXPECT_GT(hits, 100);
     EXPECT_GT(misses, 100);
     EXPECT_EQ(AabbTree(Mesh{}).any_within(Eigen::Vector3d::Zero(), 1.0), -1);
+}
+
+// Every triangle nearer than r, each once, on a torus and on a fan of long slivers (a CAD disk,
+// whose bounding spheres all reach the centre; vertex_normals asks these queries).
+TEST(AabbTree, TrianglesWithinAreThoseNearerThanTheRadius) {
+    std::vector<Eigen::Vector3d> fan_points = {Eigen::Vector3d::Zero()};
+    std::vector<std::array<int32_t, 3>> fan_triangles;
+    const int n = 500;
+    for (int k = 0; k < n; ++k) {
+        fan_points.emplace_back(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0.0);
+        fan_triangles.push_back({0, 1 + k, 1 + (k + 1) % n});
+    }
+    std::mt19937_64 rng(6);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6), radius(0.0, 0.4);
+    for (const Mesh& m : {liftremesh::test::make_torus(1.0, 0.3, 40, 16), make_mesh(fan_points, fan_triangles)}) {
+        const AabbTree tree(m);
+        long total = 0;
+        for (int i = 0; i < 300; ++i) {
+            const Eigen::Vector3d q(coord(rng), coord(rng), 0.3 * coord(rng));
+            const double r = radius(rng);
+            std::vector<int32_t> found = {-7}; // appended to, not cleared
+            tree.triangles_within(q, r, found);
+            ASSERT_EQ(found.front(), -7);
+            found.erase(found.begin());
+            std::sort(found.begin(), found.end());
+            std::vector<int32_t> expected;
+            for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+                const Eigen::Vector3d p = closest_point_on_triangle(q, m.points.row(m.triangles(f, 0)).transpose(),
+                                                                    m.points.row(m.triangles(f, 1)).transpose(),
+                                                                    m.points.row(m.triangles(f, 2)).transpose());
+                if ((p - q).squaredNorm() < r * r) expected.push_back(static_cast<int32_t>(f));
+            }
+            EXPECT_EQ(found, expected) << i;
+            total += static_cast<long>(found.size());
+        }
+        EXPECT_GT(total, 300); // the queries do find triangles
+    }
+    std::vector<int32_t> none;
+    AabbTree(Mesh{}).triangles_within(Eigen::Vector3d::Zero(), 1.0, none);
+    EXPECT_TRUE(none.empty());
 }
 
 TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {

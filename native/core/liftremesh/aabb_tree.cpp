@@ -251,6 +251,30 @@ void AabbTree::overlapping_pairs(const std::function<bool(int32_t, int32_t)>& vi
     }
 }
 
+void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<int32_t>& out) const {
+    const auto& nodes = impl_->nodes;
+    if (nodes.empty() || !(r > 0.0)) return;
+    const double r2 = r * r;
+    int32_t stack[2 * kMaxDepth];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes[stack[--top]];
+        if (!(box_squared_distance(node.box, q) < r2)) continue;
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t) {
+                if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
+                const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
+                if ((closest_point_on_triangle(q, c[0], c[1], c[2]) - q).squaredNorm() < r2) out.push_back(impl_->ids[t]);
+            }
+            continue;
+        }
+        assert(top + 2 <= 2 * kMaxDepth);
+        stack[top++] = node.first + 1;
+        stack[top++] = node.first;
+    }
+}
+
 ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit,
                               const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept) const {
     const auto& nodes = impl_->nodes;

@@ -48,6 +48,10 @@ public:
     ClosestPoint closest_where(const Eigen::Vector3d& q, double r,
                                const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const;
 
+    //! Appends to `out` the triangles strictly nearer to q than r (exact distances), in the order
+    //! the tree holds them. Thread-safe (const).
+    void triangles_within(const Eigen::Vector3d& q, double r, std::vector<int32_t>& out) const;
+
     //! Calls visit(s, t) once for each pair of triangles s != t (the mesh's indices, in either
     //! order) whose bounding boxes meet, until it returns false: the tree against itself, node
     //! pairs whose boxes are apart skipped whole. Single-threaded.
