@@ -188,6 +188,23 @@ TEST_F(MeshIo, WeldExactMergesEqualCoordinatesInFirstOccurrenceOrder) {
     EXPECT_THROW(weld_exact(bad), InvalidInput);
 }
 
+// A facet listed twice (an STL defect FreeCAD's Mesh workbench repairs as "duplicated faces"),
+// directly or through welded copies of its vertices, is kept once; its other side is kept.
+TEST_F(MeshIo, WeldExactKeepsEachFacetOnceAndItsOtherSide) {
+    const Mesh sphere = test::make_icosphere(2);
+    Mesh twice = test::joined(sphere, sphere); // a second copy of every vertex and facet
+    twice.triangles.conservativeResize(twice.triangles.rows() + 2, 3);
+    twice.triangles.row(twice.triangles.rows() - 2) << sphere.triangles(5, 1), sphere.triangles(5, 2), sphere.triangles(5, 0);
+    twice.triangles.row(twice.triangles.rows() - 1) << sphere.triangles(7, 0), sphere.triangles(7, 2), sphere.triangles(7, 1);
+    weld_exact(twice);
+    EXPECT_EQ(twice.points.rows(), sphere.points.rows());
+    ASSERT_EQ(twice.triangles.rows(), sphere.triangles.rows() + 1); // each once, and triangle 7's other side
+    EXPECT_EQ(twice.triangles.topRows(sphere.triangles.rows()), sphere.triangles);
+    EXPECT_EQ(twice.triangles.bottomRows(1), Eigen::RowVector3i(sphere.triangles(7, 0), sphere.triangles(7, 2),
+                                                                 sphere.triangles(7, 1)));
+    EXPECT_EQ(euler_characteristic(twice), 3); // the sphere's 2, plus the other side's facet
+}
+
 TEST_F(MeshIo, MalformedFilesThrowOneLineMessagesNamingTheFile) {
     expect_invalid(path("missing.stl"), "cannot open");
     expect_invalid(path("missing.stl"), "No such file or directory");

@@ -133,6 +133,17 @@ TEST(Remesh, ANeedleFarFromASmallOpenPartKeepsThePartOpen) {
     EXPECT_FALSE(r.report.warnings.empty()); // and the result says so
 }
 
+// Every facet listed twice, as two copies of the same part in one file: one sphere, no warning
+// (it was measured with chi 2 + #F and warned of another topology).
+TEST(Remesh, FacetsListedTwiceAreOneSurface) {
+    const Mesh sphere = test::make_icosphere(3);
+    const RemeshResult r = remesh(test::joined(sphere, sphere), params_with(500));
+    EXPECT_EQ(r.report.input.triangles, sphere.triangles.rows());
+    EXPECT_EQ(r.report.input.euler_characteristic, 2);
+    EXPECT_EQ(test::topology(r.mesh).chi, 2);
+    EXPECT_TRUE(r.report.warnings.empty()) << r.report.warnings.front();
+}
+
 TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     const Mesh input = test::make_icosphere(2);
     RemeshParams p = params_with(200);

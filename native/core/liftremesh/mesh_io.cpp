@@ -12,11 +12,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace liftremesh {
@@ -540,10 +542,24 @@ void weld_exact(Mesh& mesh) {
 
     Triangles triangles(mesh.triangles.rows(), 3);
     Eigen::Index count = 0;
+    // A triangle is listed once: (a, b, c), (b, c, a) and (c, a, b) are the same facet, stored
+    // from its smallest index on. (a, c, b), the other side, is another facet.
+    struct FacetHash {
+        size_t operator()(const std::array<int32_t, 3>& t) const {
+            const auto h = std::hash<uint64_t>{};
+            return h((static_cast<uint64_t>(static_cast<uint32_t>(t[0])) << 32) ^ static_cast<uint32_t>(t[1])) ^
+                   (h(static_cast<uint32_t>(t[2])) * 0x9e3779b97f4a7c15ULL);
+        }
+    };
+    std::unordered_set<std::array<int32_t, 3>, FacetHash> facets;
+    facets.reserve(static_cast<size_t>(mesh.triangles.rows()));
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
-        const int32_t a = remap[mesh.triangles(f, 0)], b = remap[mesh.triangles(f, 1)], c = remap[mesh.triangles(f, 2)];
-        if (a == b || b == c || c == a) continue; // collapsed by the weld (or given so)
-        triangles.row(count++) << a, b, c;
+        std::array<int32_t, 3> t = {remap[mesh.triangles(f, 0)], remap[mesh.triangles(f, 1)], remap[mesh.triangles(f, 2)]};
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue; // collapsed by the weld (or given so)
+        std::array<int32_t, 3> key = t;
+        std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+        if (!facets.insert(key).second) continue; // listed before, as an STL can list a facet twice
+        triangles.row(count++) << t[0], t[1], t[2];
     }
     triangles.conservativeResize(count, 3);
     mesh.points = std::move(points);

@@ -34,7 +34,10 @@ void write_mesh(const std::string& path, const Mesh& mesh);
 void check_mesh_extension(const std::string& path);
 
 //! Welds vertices with exactly equal coordinates and drops triangles that become degenerate
-//! (a repeated index). Used by read_mesh; exposed for meshes that arrive as arrays.
+//! (a repeated index), and repeats of a triangle already listed with the same orientation (the
+//! same vertices in the same cyclic order: a duplicated facet, which FreeCAD's Mesh workbench
+//! removes as such; the same vertices the other way round are the facet's other side, kept).
+//! Used by read_mesh; exposed for meshes that arrive as arrays.
 //! Coordinates are compared as doubles (-0.0 equals 0.0; identical NaN bit patterns are merged);
 //! the kept vertex is the first occurrence and the order of first occurrences is kept.
 //! Throws InvalidInput if a triangle index is out of range.
