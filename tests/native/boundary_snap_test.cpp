@@ -15,6 +15,7 @@
 #include <set>
 
 using namespace liftremesh;
+using liftremesh::test::params_with;
 
 namespace {
 
@@ -72,12 +73,6 @@ Mesh wedge_strip(double degrees, double d) {
     const Eigen::Vector3d a1(d, 0, 0), a2(2 * d, 0, 0), b1 = d * u, b2 = 2 * d * u;
     return test::make_mesh({{a1.x(), a1.y(), 0}, {a2.x(), a2.y(), 0}, {b2.x(), b2.y(), 0}, {b1.x(), b1.y(), 0}},
                            {{0, 1, 2}, {0, 2, 3}});
-}
-
-RemeshParams params_with(int vertices) {
-    RemeshParams p;
-    p.target_vertices = vertices;
-    return p;
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "liftremesh/mesh.h"
+#include "liftremesh/params.h"
 #include "liftremesh/rvd.h"
 
 #include <Eigen/Geometry>
@@ -225,6 +226,15 @@ inline std::string shared_mesh(const std::string& name) {
 #define LIFTREMESH_REQUIRE_SHARED(var, name)                                                 \
     const std::string var = ::liftremesh::test::shared_mesh(name);                           \
     if (var.empty()) GTEST_SKIP() << "../shared/meshes/" << name << " not found beside the repository"
+
+//! The default parameters but for the vertex count, sigma and the seed.
+inline RemeshParams params_with(int vertices, double sigma = RemeshParams{}.sigma, std::uint64_t seed = RemeshParams{}.seed) {
+    RemeshParams p;
+    p.target_vertices = vertices;
+    p.sigma = sigma;
+    p.seed = seed;
+    return p;
+}
 
 //! The four CAD meshes in ../shared/meshes that the acceptance criteria name.
 inline const std::vector<const char*> kAcceptanceMeshes = {"gmsh_t13_data.stl", "netgen_hinge.stl", "gmsh_lever.stl",

@@ -15,16 +15,9 @@
 #include <omp.h>
 
 using namespace liftremesh;
+using liftremesh::test::params_with;
 
 namespace {
-
-RemeshParams params_with(int vertices, double sigma = 5.0, std::uint64_t seed = RemeshParams{}.seed) {
-    RemeshParams p;
-    p.target_vertices = vertices;
-    p.sigma = sigma;
-    p.seed = seed;
-    return p;
-}
 
 double distance_to_nearest_vertex(const Mesh& m, const Eigen::Vector3d& x) {
     return (m.points.rowwise() - x.transpose()).rowwise().norm().minCoeff();

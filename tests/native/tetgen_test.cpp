@@ -58,12 +58,6 @@ protected:
     }
 };
 
-RemeshParams with_vertices(int n) {
-    RemeshParams p;
-    p.target_vertices = n;
-    return p;
-}
-
 } // namespace
 
 TEST_F(TetGen, RefusesTwoSpheresThroughEachOther) {
@@ -79,7 +73,7 @@ TEST_F(TetGen, RefusesTwoSpheresThroughEachOther) {
 
 TEST_F(TetGen, FillsRemeshedBuiltShapes) {
     for (const Mesh& input : {test::make_cube(1.0, 8), test::make_torus(1.0, 0.3, 48, 16)}) {
-        const Mesh out = remesh(input, with_vertices(1500)).mesh;
+        const Mesh out = remesh(input, test::params_with(1500)).mesh;
         const TetgenRun r = fill(out);
         EXPECT_EQ(r.exit_code, 0);
         EXPECT_GT(r.tetrahedra, out.triangles.rows() / 2);
