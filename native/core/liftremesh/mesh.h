@@ -115,6 +115,16 @@ std::vector<char> referenced_vertices(const Mesh& mesh);
 //! Row v: the triangles that have vertex v as a corner, in increasing order.
 CompressedRows vertex_triangles(const Mesh& mesh);
 
+//! Hash of a vertex triple (FNV-1a over the three indices), for sets of triangles keyed by
+//! their vertices (sorted, or rotated to start at the smallest, as the set needs).
+struct TriangleKeyHash {
+    size_t operator()(const std::array<int32_t, 3>& t) const {
+        uint64_t h = 1469598103934665603ull;
+        for (int32_t i : t) h = (h ^ static_cast<uint32_t>(i)) * 1099511628211ull;
+        return static_cast<size_t>(h);
+    }
+};
+
 //! V - E + F counting only vertices referenced by a triangle.
 int euler_characteristic(const Mesh& mesh);
 

@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -544,14 +543,7 @@ void weld_exact(Mesh& mesh) {
     Eigen::Index count = 0;
     // A triangle is listed once: (a, b, c), (b, c, a) and (c, a, b) are the same facet, stored
     // from its smallest index on. (a, c, b), the other side, is another facet.
-    struct FacetHash {
-        size_t operator()(const std::array<int32_t, 3>& t) const {
-            const auto h = std::hash<uint64_t>{};
-            return h((static_cast<uint64_t>(static_cast<uint32_t>(t[0])) << 32) ^ static_cast<uint32_t>(t[1])) ^
-                   (h(static_cast<uint32_t>(t[2])) * 0x9e3779b97f4a7c15ULL);
-        }
-    };
-    std::unordered_set<std::array<int32_t, 3>, FacetHash> facets;
+    std::unordered_set<std::array<int32_t, 3>, TriangleKeyHash> facets;
     facets.reserve(static_cast<size_t>(mesh.triangles.rows()));
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
         std::array<int32_t, 3> t = {remap[mesh.triangles(f, 0)], remap[mesh.triangles(f, 1)], remap[mesh.triangles(f, 2)]};

@@ -19,15 +19,6 @@ namespace {
 
 using Tri = std::array<int32_t, 3>;
 
-// Hash of a sorted vertex triple, for duplicate detection.
-struct TriHash {
-    size_t operator()(const Tri& t) const {
-        uint64_t h = 1469598103934665603ull;
-        for (int32_t i : t) h = (h ^ static_cast<uint32_t>(i)) * 1099511628211ull;
-        return static_cast<size_t>(h);
-    }
-};
-
 // Whether triangle t traverses the edge a -> b (as opposed to b -> a or not at all).
 bool traverses(const Tri& t, int32_t a, int32_t b) {
     for (int j = 0; j < 3; ++j)
@@ -71,7 +62,7 @@ public:
     // Same vertex set as an earlier triangle, in either orientation: the first one is kept
     // (orientation is decided later, by the majority of the component).
     long remove_duplicates() {
-        std::unordered_set<Tri, TriHash> seen;
+        std::unordered_set<Tri, TriangleKeyHash> seen;
         seen.reserve(tris_.size());
         long removed = 0;
         for (size_t f = 0; f < tris_.size(); ++f) {
