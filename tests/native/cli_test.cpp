@@ -24,14 +24,8 @@ struct CliRun {
 
 class Cli : public ::testing::Test {
 protected:
-    fs::path dir;
-    void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("liftremesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
+    const test::TestDir scratch{"liftremesh_cli_"};
+    const fs::path dir = scratch.path();
 
     static std::string slurp(const fs::path& p) {
         std::ifstream in(p);

@@ -9,12 +9,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace liftremesh::test {
 
@@ -216,6 +219,32 @@ inline LiftedPoints sites_near(const LiftedSurface& s, int n, double noise, unsi
     }
     return v;
 }
+
+//! The running test's own empty directory in the system's temporary folder, named after
+//! `prefix`, the process and the test (a parameterized test's "Name/param" as "Name_param", one
+//! directory, not one inside another); removed with the object.
+class TestDir {
+public:
+    explicit TestDir(const std::string& prefix) : path_(std::filesystem::temp_directory_path() / (prefix + unique_name())) {
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TestDir() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    TestDir(const TestDir&) = delete;
+    TestDir& operator=(const TestDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    static std::string unique_name() {
+        std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        std::replace(name.begin(), name.end(), '/', '_');
+        return std::to_string(::getpid()) + "_" + name;
+    }
+    std::filesystem::path path_;
+};
 
 //! Path of a mesh in ../shared/meshes, or "" (and the test is skipped) where it does not exist.
 inline std::string shared_mesh(const std::string& name) {

@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 using namespace liftremesh;
 namespace fs = std::filesystem;
@@ -23,14 +22,6 @@ namespace {
 //! Each test gets its own empty directory, removed afterwards.
 class MeshIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("liftremesh_io_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     std::string write_file(const std::string& name, const std::string& content) const {
@@ -39,7 +30,8 @@ protected:
         return p;
     }
 
-    fs::path dir_;
+    const test::TestDir scratch_{"liftremesh_io_"};
+    const fs::path& dir_ = scratch_.path();
 };
 
 //! ASCII STL text of every triangle of `mesh`, with `eol` line endings.

@@ -32,15 +32,11 @@ long first_number(const fs::path& p) {
 
 class TetGen : public ::testing::Test {
 protected:
-    fs::path dir;
+    const test::TestDir scratch{"liftremesh_tetgen_"};
+    const fs::path dir = scratch.path();
     void SetUp() override {
         if (std::string(LIFTREMESH_TETGEN).empty()) FAIL() << "tetgen was not found at configure time: make deps installs it";
-        dir = fs::temp_directory_path() /
-              ("liftremesh_tetgen_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
     }
-    void TearDown() override { fs::remove_all(dir); }
 
     TetgenRun fill(const Mesh& surface) const {
         const fs::path off = dir / "surface.off";
