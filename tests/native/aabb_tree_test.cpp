@@ -226,8 +226,9 @@ TEST(AabbTree, TrianglesWithinAreThoseNearerThanTheRadius) {
 TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
     const AabbTree tree(m);
-    // Accept the triangles facing up only: brute force over them.
-    const auto up = [&](int32_t f, const Eigen::Vector3d& = {}) { return tree.triangle_normal(f).z() > 0.2; };
+    // The triangles facing up only (against -z): brute force over them.
+    const std::vector<Eigen::Vector3d> down = {-Eigen::Vector3d::UnitZ()};
+    const auto up = [&](int32_t f) { return tree.triangle_normal(f).z() > 0.2; };
     Mesh facing_up = m;
     Eigen::Index kept = 0;
     for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
@@ -241,7 +242,8 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     for (int i = 0; i < 2000; ++i) {
         const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
         const double r = radius(rng);
-        const ClosestPoint want = brute_force_closest(facing_up, q), got = tree.closest_where(q, r, up);
+        const ClosestPoint want = brute_force_closest(facing_up, q),
+                           got = tree.closest_where(q, r, {down, -0.2}, [](int32_t, const Eigen::Vector3d&) { return true; });
         if (want.squared_distance < r * r * (1 - 1e-9)) {
             ASSERT_GE(got.triangle, 0) << i;
             EXPECT_TRUE(up(got.triangle)) << i;
@@ -255,6 +257,51 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     }
     EXPECT_GT(found, 100);
     EXPECT_GT(none, 100);
+}
+
+TEST(AabbTree, ClosestWhereSkipsOnlyTrianglesThatDoNotFaceAsAsked) {
+    // Several directions and a point-dependent `accept`, on a torus joined to a sphere (normals
+    // of every direction, a tree of several levels): the search, whose subtrees are skipped by
+    // their normals' boxes, against every triangle tested. Thresholds up to max_dot = 1 - 1e-12,
+    // where nearly every triangle faces so, and down to -0.99, where few do.
+    Mesh sphere = liftremesh::test::make_icosphere(3, 0.5);
+    sphere.points.rowwise() += Eigen::RowVector3d(1.0, 0.0, 0.2);
+    const Mesh m = liftremesh::test::joined(liftremesh::test::make_torus(1.0, 0.3, 48, 20), sphere);
+    const AabbTree tree(m);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6), radius(0.05, 1.0), unit(-1.0, 1.0);
+    const std::array<double, 5> thresholds = {-0.99, -0.9, -0.4, 0.3, 1.0 - 1e-12};
+    int found = 0, none = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
+        const double r = radius(rng);
+        std::vector<Eigen::Vector3d> directions(1 + i % 3);
+        for (Eigen::Vector3d& d : directions) d = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+        const double max_dot = thresholds[static_cast<size_t>(i) % thresholds.size()];
+        const auto accept = [&](int32_t f, const Eigen::Vector3d& p) { return f % 5 != 0 && p.x() > q.x() - 0.2; };
+        double want = r * r;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+            const Eigen::Vector3d n = tree.triangle_normal(static_cast<int32_t>(f));
+            if (std::none_of(directions.begin(), directions.end(), [&](const Eigen::Vector3d& d) { return n.dot(d) < max_dot; }))
+                continue;
+            const Eigen::Vector3d p = closest_point_on_triangle(q, m.points.row(m.triangles(f, 0)).transpose(),
+                                                                m.points.row(m.triangles(f, 1)).transpose(),
+                                                                m.points.row(m.triangles(f, 2)).transpose());
+            if ((p - q).squaredNorm() < want && accept(static_cast<int32_t>(f), p)) want = (p - q).squaredNorm();
+        }
+        const ClosestPoint got = tree.closest_where(q, r, {directions, max_dot}, accept);
+        EXPECT_EQ(got.squared_distance, want) << i;
+        if (got.triangle >= 0) {
+            const Eigen::Vector3d n = tree.triangle_normal(got.triangle);
+            EXPECT_TRUE(std::any_of(directions.begin(), directions.end(), [&](const Eigen::Vector3d& d) { return n.dot(d) < max_dot; })) << i;
+            EXPECT_TRUE(accept(got.triangle, got.point)) << i;
+            ++found;
+        } else {
+            ++none;
+        }
+    }
+    EXPECT_GT(found, 500);
+    EXPECT_GT(none, 300);
 }
 
 TEST(AabbTree, OverlappingPairsAreExactlyThePairsWhoseBoxesMeetEachOnce) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -48,6 +49,32 @@ struct Node {
     Box box;       //!< bounding box of the node's triangles
     int32_t first; //!< leaf: first triangle (tree order); inner: index of the left child
     int32_t count; //!< leaf: number of triangles (>= 1); inner: 0
+};
+
+//! A box of unit normals, in floats: each double rounded down (lo) or up (hi) on the way.
+struct NormalBox {
+    std::array<float, 3> lo, hi;
+    void add(const Eigen::Vector3d& n) {
+        for (int k = 0; k < 3; ++k) {
+            float below = static_cast<float>(n[k]), above = below;
+            if (below > n[k]) below = std::nextafter(below, -std::numeric_limits<float>::infinity());
+            if (above < n[k]) above = std::nextafter(above, std::numeric_limits<float>::infinity());
+            lo[k] = std::min(lo[k], below);
+            hi[k] = std::max(hi[k], above);
+        }
+    }
+    void add(const NormalBox& b) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b.lo[k]);
+            hi[k] = std::max(hi[k], b.hi[k]);
+        }
+    }
+    static NormalBox empty() {
+        NormalBox b;
+        b.lo.fill(std::numeric_limits<float>::infinity());
+        b.hi.fill(-std::numeric_limits<float>::infinity());
+        return b;
+    }
 };
 
 //! Squared distance from q to the box (0 inside).
@@ -133,7 +160,32 @@ struct AabbTree::Impl {
     std::vector<Box> boxes;               //!< bounding box of each triangle, in tree order
     std::vector<int32_t> ids;             //!< input triangle index, in tree order
     std::vector<Eigen::Vector3d> normals; //!< unit normal per input triangle, in input order
+    //! Per node, a box holding its triangles' normals, in floats rounded outwards (half the
+    //! memory of doubles; the bound stays safe): made by the first query that needs them, as
+    //! only the thin-wall search does (bound_normals).
+    std::vector<NormalBox> normal_boxes;
+    std::once_flag normals_bounded;
+
+    const std::vector<NormalBox>& bound_normals();
 };
+
+const std::vector<NormalBox>& AabbTree::Impl::bound_normals() {
+    std::call_once(normals_bounded, [this] {
+        normal_boxes.assign(nodes.size(), NormalBox::empty());
+        // Children come after their parent (Builder), so one backward pass bounds every node.
+        for (size_t i = nodes.size(); i-- > 0;) {
+            const Node& node = nodes[i];
+            NormalBox& box = normal_boxes[i];
+            if (node.count > 0) {
+                for (int32_t t = node.first; t < node.first + node.count; ++t) box.add(normals[ids[t]]);
+            } else {
+                box = normal_boxes[node.first];
+                box.add(normal_boxes[node.first + 1]);
+            }
+        }
+    });
+    return normal_boxes;
+}
 
 AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     check_indices(mesh, "AABB tree");
@@ -189,9 +241,10 @@ int32_t AabbTree::any_within(const Eigen::Vector3d& q, double r) const {
     return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, true).triangle;
 }
 
-ClosestPoint AabbTree::closest_where(const Eigen::Vector3d& q, double r,
+ClosestPoint AabbTree::closest_where(const Eigen::Vector3d& q, double r, const FacingAgainst& facing,
                                      const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const {
-    return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, false, &accept);
+    return search(q, {Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()), r * r, -1}, false, &facing,
+                  &accept);
 }
 
 Eigen::Vector3d AabbTree::triangle_normal(int32_t triangle) const {
@@ -211,6 +264,23 @@ bool boxes_meet(const Box& a, const Box& b) {
 
 //! Sum of a box's sides.
 double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]); }
+
+//! Whether the unit normal n faces as `facing` asks: the test the triangles are held to.
+bool faces(const Eigen::Vector3d& n, const AabbTree::FacingAgainst& facing) {
+    return std::any_of(facing.directions.begin(), facing.directions.end(),
+                       [&](const Eigen::Vector3d& m) { return n.dot(m) < facing.max_dot; });
+}
+
+//! Whether some normal in the box may face as `facing` asks: the least n.m over the box is the
+//! sum, axis by axis, of the lesser end's product. A margin far above the rounding of that sum
+//! keeps the bound on the safe side, so no triangle that faces() accepts is ever skipped.
+bool may_face(const NormalBox& normals, const AabbTree::FacingAgainst& facing) {
+    return std::any_of(facing.directions.begin(), facing.directions.end(), [&](const Eigen::Vector3d& m) {
+        double least = 0.0;
+        for (int k = 0; k < 3; ++k) least += std::min(double{normals.lo[k]} * m[k], double{normals.hi[k]} * m[k]);
+        return least < facing.max_dot + 1e-9;
+    });
+}
 
 } // namespace
 
@@ -275,10 +345,11 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     }
 }
 
-ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit,
+ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit, const FacingAgainst* facing,
                               const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept) const {
     const auto& nodes = impl_->nodes;
     if (nodes.empty()) return best;
+    const NormalBox* normal_boxes = facing ? impl_->bound_normals().data() : nullptr;
 
     // Depth-first, nearer child first; a node is skipped once its box is no nearer than the best,
     // and so is a leaf's triangle (its exact distance costs six times its box's).
@@ -292,10 +363,12 @@ ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool 
     while (top > 0) {
         const auto [index, box_d2] = stack[--top];
         if (box_d2 >= best.squared_distance) continue;
+        if (facing && !may_face(normal_boxes[index], *facing)) continue;
         const Node& node = nodes[index];
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
                 if (box_squared_distance(impl_->boxes[t], q) >= best.squared_distance) continue;
+                if (facing && !faces(impl_->normals[impl_->ids[t]], *facing)) continue;
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 const Eigen::Vector3d p = closest_point_on_triangle(q, c[0], c[1], c[2]);
                 const double d2 = (p - q).squaredNorm();

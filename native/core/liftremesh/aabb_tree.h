@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace liftremesh {
 
@@ -41,11 +42,20 @@ public:
     //! that stops at the first such triangle, far cheaper than closest() when r is small.
     int32_t any_within(const Eigen::Vector3d& q, double r) const;
 
-    //! The closest point within r of q on a triangle for which `accept` (given the triangle's
-    //! index and its point closest to q) is true; triangle -1 at squared distance r^2 if there
-    //! is none. `accept` is asked only about triangles nearer than the best found so far.
-    //! Thread-safe if `accept` is.
-    ClosestPoint closest_where(const Eigen::Vector3d& q, double r,
+    //! Triangles that face against one of `directions`: their unit normal n has
+    //! n.dot(m) < max_dot for at least one m of them (with max_dot < 0, turned more than
+    //! acos(max_dot) from it). The tree bounds the normals under each node, so a query
+    //! restricted so skips whole subtrees that face elsewhere.
+    struct FacingAgainst {
+        const std::vector<Eigen::Vector3d>& directions;
+        double max_dot;
+    };
+
+    //! The closest point within r of q on a triangle that faces as `facing` asks and for which
+    //! `accept` (given the triangle's index and its point closest to q) is true; triangle -1 at
+    //! squared distance r^2 if there is none. `accept` is asked only about triangles that face
+    //! so and are nearer than the best found so far. Thread-safe if `accept` is.
+    ClosestPoint closest_where(const Eigen::Vector3d& q, double r, const FacingAgainst& facing,
                                const std::function<bool(int32_t, const Eigen::Vector3d&)>& accept) const;
 
     //! Appends to `out` the triangles strictly nearer to q than r (exact distances), in the order
@@ -62,9 +72,11 @@ public:
     Eigen::Vector3d triangle_normal(int32_t triangle) const;
 
 private:
-    //! best: initial bound; first_hit: return as soon as a triangle beats it; accept: if not
-    //! null, only the triangles it accepts (asked with their closest point) count.
+    //! best: initial bound; first_hit: return as soon as a triangle beats it; facing, accept:
+    //! if not null, only the triangles that face so and that `accept` accepts (asked with their
+    //! closest point) count.
     ClosestPoint search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit = false,
+                        const FacingAgainst* facing = nullptr,
                         const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept = nullptr) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -20,13 +20,13 @@ Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double re
             own.clear();
             for (const int32_t* f = around.begin(v); f != around.end(v); ++f) own.push_back(tree.triangle_normal(*f));
             const Eigen::Vector3d x = mesh.points.row(v).transpose();
+            // Antiparallel to one of the vertex's own triangles (the tree skips the rest), not one
+            // of them, and across: the way to it along its normal.
             const auto far_side = [&](int32_t f, const Eigen::Vector3d& p) {
                 if (mesh.triangles(f, 0) == v || mesh.triangles(f, 1) == v || mesh.triangles(f, 2) == v) return false;
-                const Eigen::Vector3d n = tree.triangle_normal(f);
-                return std::any_of(own.begin(), own.end(), [&](const Eigen::Vector3d& m) { return n.dot(m) < cos_parallel; }) &&
-                       std::abs((x - p).dot(n)) >= -cos_parallel * (x - p).norm(); // across: along its normal
+                return std::abs((x - p).dot(tree.triangle_normal(f))) >= -cos_parallel * (x - p).norm();
             };
-            const ClosestPoint wall = tree.closest_where(x, reach, far_side);
+            const ClosestPoint wall = tree.closest_where(x, reach, {own, cos_parallel}, far_side);
             thickness[v] = wall.triangle >= 0 ? std::sqrt(wall.squared_distance) : std::numeric_limits<double>::infinity();
         }
     }
