@@ -243,7 +243,9 @@ TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
         const Eigen::Vector3d q(coord(rng), coord(rng), 0.5 * coord(rng));
         const double r = radius(rng);
         const ClosestPoint want = brute_force_closest(facing_up, q),
-                           got = tree.closest_where(q, r, {down, -0.2}, [](int32_t, const Eigen::Vector3d&) { return true; });
+                           got = tree.closest_where(q, r, {down, -0.2}, [](int32_t, const Eigen::Vector3d&) {
+                               return true;
+                           });
         if (want.squared_distance < r * r * (1 - 1e-9)) {
             ASSERT_GE(got.triangle, 0) << i;
             EXPECT_TRUE(up(got.triangle)) << i;
@@ -279,11 +281,12 @@ TEST(AabbTree, ClosestWhereSkipsOnlyTrianglesThatDoNotFaceAsAsked) {
         for (Eigen::Vector3d& d : directions) d = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
         const double max_dot = thresholds[static_cast<size_t>(i) % thresholds.size()];
         const auto accept = [&](int32_t f, const Eigen::Vector3d& p) { return f % 5 != 0 && p.x() > q.x() - 0.2; };
+        const auto faces = [&](const Eigen::Vector3d& n) {
+            return std::any_of(directions.begin(), directions.end(), [&](const Eigen::Vector3d& d) { return n.dot(d) < max_dot; });
+        };
         double want = r * r;
         for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
-            const Eigen::Vector3d n = tree.triangle_normal(static_cast<int32_t>(f));
-            if (std::none_of(directions.begin(), directions.end(), [&](const Eigen::Vector3d& d) { return n.dot(d) < max_dot; }))
-                continue;
+            if (!faces(tree.triangle_normal(static_cast<int32_t>(f)))) continue;
             const Eigen::Vector3d p = closest_point_on_triangle(q, m.points.row(m.triangles(f, 0)).transpose(),
                                                                 m.points.row(m.triangles(f, 1)).transpose(),
                                                                 m.points.row(m.triangles(f, 2)).transpose());
@@ -292,8 +295,7 @@ TEST(AabbTree, ClosestWhereSkipsOnlyTrianglesThatDoNotFaceAsAsked) {
         const ClosestPoint got = tree.closest_where(q, r, {directions, max_dot}, accept);
         EXPECT_EQ(got.squared_distance, want) << i;
         if (got.triangle >= 0) {
-            const Eigen::Vector3d n = tree.triangle_normal(got.triangle);
-            EXPECT_TRUE(std::any_of(directions.begin(), directions.end(), [&](const Eigen::Vector3d& d) { return n.dot(d) < max_dot; })) << i;
+            EXPECT_TRUE(faces(tree.triangle_normal(got.triangle))) << i;
             EXPECT_TRUE(accept(got.triangle, got.point)) << i;
             ++found;
         } else {

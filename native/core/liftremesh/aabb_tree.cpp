@@ -12,6 +12,7 @@
 #include <mutex>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace liftremesh {
@@ -76,6 +77,26 @@ struct NormalBox {
         return b;
     }
 };
+
+//! The triangles under a node: a range of the tree order, from its leftmost leaf's first to its
+//! rightmost leaf's last (Builder splits each node's range in two).
+std::pair<int32_t, int32_t> triangle_range(const std::vector<Node>& nodes, const Node& node) {
+    const Node* left = &node;
+    while (left->count == 0) left = &nodes[left->first];
+    const Node* right = &node;
+    while (right->count == 0) right = &nodes[right->first + 1];
+    return {left->first, right->first + right->count};
+}
+
+//! Squared distance from q to the box's farthest corner.
+double box_farthest_squared_distance(const Box& box, const Eigen::Vector3d& q) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = std::max(q[k] - box.lo[k], box.hi[k] - q[k]);
+        d2 += d * d;
+    }
+    return d2;
+}
 
 //! Squared distance from q to the box (0 inside).
 double box_squared_distance(const Box& box, const Eigen::Vector3d& q) {
@@ -325,12 +346,20 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     const auto& nodes = impl_->nodes;
     if (nodes.empty() || !(r > 0.0)) return;
     const double r2 = r * r;
+    // A box whose farthest corner is nearer than r holds only triangles nearer than r: they are
+    // taken without a test. The margin keeps this clear of the rounding of the per-triangle test.
+    const double inside_d2 = r2 * (1.0 - 1e-9);
     int32_t stack[2 * kMaxDepth];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes[stack[--top]];
         if (!(box_squared_distance(node.box, q) < r2)) continue;
+        if (box_farthest_squared_distance(node.box, q) < inside_d2) { // all of it in the ball
+            const auto [begin, end] = triangle_range(nodes, node);
+            out.insert(out.end(), impl_->ids.begin() + begin, impl_->ids.begin() + end);
+            continue;
+        }
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
                 if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
