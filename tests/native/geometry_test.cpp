@@ -41,6 +41,24 @@ TEST(Geometry, BallIntersectionAreaMatchesLimits) {
     EXPECT_EQ(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 5), 1.0, a, b, c), 0.0);
 }
 
+TEST(Geometry, PlaneFrameIsOrthonormalInTheTrianglesPlaneAndZeroWithoutArea) {
+    const Eigen::Vector3d a(1, 2, 3), b(4, 2, 7), c(0, 5, 3);
+    const PlaneFrame f = plane_frame(a, b, c);
+    EXPECT_NEAR(f.u1.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(f.u2.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(f.u1.dot(f.u2), 0.0, 1e-15);
+    EXPECT_NEAR(f.u1.cross(b - a).norm(), 0.0, 1e-14);                // u1 along b - a
+    EXPECT_GT(f.u2.dot(c - a), 0.0);                                   // u2 towards c
+    EXPECT_NEAR(f.u1.cross(f.u2).dot((b - a).cross(c - a).normalized()), 1.0, 1e-15); // in its plane
+    // Collinear corners and a repeated corner: no frame, and no area in any ball.
+    using Corners = std::array<Eigen::Vector3d, 3>;
+    for (const auto& [p, q, r] : {Corners{a, b, a + 2.0 * (b - a)}, Corners{a, a, c}}) {
+        const PlaneFrame none = plane_frame(p, q, r);
+        EXPECT_TRUE(none.u1.isZero(0.0) && none.u2.isZero(0.0));
+        EXPECT_EQ(triangle_ball_intersection_area(p, 10.0, p, q, r), 0.0);
+    }
+}
+
 TEST(Geometry, ClosestPointOnTriangleRegions) {
     const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
     EXPECT_TRUE(closest_point_on_triangle({0.2, 0.2, 5}, a, b, c).isApprox(Eigen::Vector3d(0.2, 0.2, 0)));

@@ -96,16 +96,28 @@ double disk_wedge_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b, doubl
 
 } // namespace
 
-double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+PlaneFrame plane_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const PlaneFrame none{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     Eigen::Vector3d u1 = b - a;
     const double l1 = u1.norm();
-    if (!(l1 > 0.0)) return 0.0;
+    if (!(l1 > 0.0)) return none;
     u1 /= l1;
     Eigen::Vector3d u2 = (c - a) - u1 * u1.dot(c - a);
     const double l2 = u2.norm();
-    if (!(l2 > 1e-14 * l1)) return 0.0;
+    if (!(l2 > 1e-14 * l1)) return none;
     u2 /= l2;
+    return {u1, u2};
+}
+
+double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return triangle_ball_intersection_area(p, r, a, b, c, plane_frame(a, b, c));
+}
+
+double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, const PlaneFrame& frame) {
+    const Eigen::Vector3d &u1 = frame.u1, &u2 = frame.u2;
+    if (u1.isZero(0.0)) return 0.0; // no area
     const Eigen::Vector3d n = u1.cross(u2);
     const double dist = n.dot(p - a);
     const double rho2 = r * r - dist * dist;

@@ -11,10 +11,12 @@ namespace liftremesh {
 Points vertex_normals(const Mesh& mesh, double eta) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
     std::vector<Eigen::Vector3d> face_normal(nf);
+    std::vector<PlaneFrame> frame(nf); // each triangle meets many balls
     Points ring = Points::Zero(nv, 3); // one-ring, area-weighted: the fallback and the side test
     for (Eigen::Index f = 0; f < nf; ++f) {
         const auto a = corner(mesh, f, 0), b = corner(mesh, f, 1), c = corner(mesh, f, 2);
         face_normal[f] = triangle_normal(a, b, c);
+        frame[f] = plane_frame(a, b, c);
         const double area = triangle_area(a, b, c);
         for (int j = 0; j < 3; ++j) ring.row(mesh.triangles(f, j)) += area * face_normal[f].transpose();
     }
@@ -37,8 +39,8 @@ Points vertex_normals(const Mesh& mesh, double eta) {
             std::sort(found.begin(), found.end()); // a sum in the mesh's order, whatever the tree's
             for (int32_t f : found) {
                 if (own.dot(face_normal[f]) < -0.5) continue; // far side of a thin wall
-                const double w =
-                    triangle_ball_intersection_area(x, eta, corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2));
+                const double w = triangle_ball_intersection_area(x, eta, corner(mesh, f, 0), corner(mesh, f, 1),
+                                                                 corner(mesh, f, 2), frame[f]);
                 sum += w * face_normal[f];
             }
             const double len = sum.norm();
