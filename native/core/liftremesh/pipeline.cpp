@@ -137,8 +137,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
 
     clock.begin("normals");
+    const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
+    // Built once the normals' own tree is freed, so that the two are never held at once.
     const AabbTree input_tree(input); // thin walls here, distances to the input from the repair on
-    const Points normals = vertex_normals(unit, params.eta);                     // Section 5.2.1
     const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
     LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
     if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
