@@ -11,37 +11,23 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <string>
 
 using namespace liftremesh;
 
-TEST(MemoryBudget, RefusesWhatDoesNotFitAndNamesTheNumbers) {
-    const std::uint64_t needed = estimated_peak_bytes(1'000'000, 5000, 2);
-    EXPECT_NO_THROW(check_memory_budget(1'000'000, 5000, 2, needed));
-    EXPECT_NO_THROW(check_memory_budget(1'000'000, 5000, 2, 0)); // unknown: no check
-    try {
-        check_memory_budget(1'000'000, 5000, 2, needed - 1);
-        FAIL() << "expected InvalidInput";
-    } catch (const InvalidInput& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("1000000 vertices"), std::string::npos) << message;
-        EXPECT_NE(message.find("5000 triangles"), std::string::npos) << message;
-        EXPECT_NE(message.find("GiB"), std::string::npos) << message;
-        EXPECT_NE(message.find("fewer vertices"), std::string::npos) << message;
-    }
-    // An input far finer than the output: the remedy is a coarser input, not fewer vertices.
-    try {
-        check_memory_budget(2000, 3'000'000, 2, estimated_peak_bytes(2000, 3'000'000, 2) - 1);
-        FAIL() << "expected InvalidInput";
-    } catch (const InvalidInput& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("3000000 triangles"), std::string::npos) << message;
-        EXPECT_NE(message.find("too fine"), std::string::npos) << message;
-        EXPECT_EQ(message.find("fewer vertices"), std::string::npos) << message;
-    }
-    EXPECT_GT(physical_memory_bytes(), std::uint64_t{1} << 28); // this platform can tell it
-}
-
 namespace {
+
+//! The message with which check_memory_budget refuses `sites` vertices on `triangles` input
+//! triangles (2 threads) when the machine has one byte less than the estimate.
+std::string refusal(long sites, long triangles) {
+    try {
+        check_memory_budget(sites, triangles, 2, estimated_peak_bytes(sites, triangles, 2) - 1);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected InvalidInput for " << sites << " vertices on " << triangles << " triangles";
+    return {};
+}
 
 //! Peak resident size in bytes of the CLI remeshing `mesh` at `sites` vertices (3 iterations,
 //! 2 threads), from /usr/bin/time.
@@ -60,6 +46,21 @@ double measured_peak_bytes(const Mesh& mesh, long sites) {
 }
 
 } // namespace
+
+TEST(MemoryBudget, RefusesWhatDoesNotFitAndNamesTheNumbers) {
+    const std::uint64_t needed = estimated_peak_bytes(1'000'000, 5000, 2);
+    EXPECT_NO_THROW(check_memory_budget(1'000'000, 5000, 2, needed));
+    EXPECT_NO_THROW(check_memory_budget(1'000'000, 5000, 2, 0)); // unknown: no check
+    const std::string many_sites = refusal(1'000'000, 5000);
+    for (const char* part : {"1000000 vertices", "5000 triangles", "GiB", "fewer vertices"})
+        EXPECT_NE(many_sites.find(part), std::string::npos) << many_sites;
+    // An input far finer than the output: the remedy is a coarser input, not fewer vertices.
+    const std::string fine_input = refusal(2000, 3'000'000);
+    EXPECT_NE(fine_input.find("3000000 triangles"), std::string::npos) << fine_input;
+    EXPECT_NE(fine_input.find("too fine"), std::string::npos) << fine_input;
+    EXPECT_EQ(fine_input.find("fewer vertices"), std::string::npos) << fine_input;
+    EXPECT_GT(physical_memory_bytes(), std::uint64_t{1} << 28); // this platform can tell it
+}
 
 TEST(MemoryBudget, EstimateCoversAMeasuredRunWithoutOverstatingIt) {
     if (std::system("test -x /usr/bin/time") != 0) GTEST_SKIP() << "/usr/bin/time is not installed";

@@ -22,60 +22,43 @@ namespace {
 constexpr int kLeafSize = 4;  // triangles per leaf at most
 constexpr int kMaxDepth = 64; // median splits halve the count: depth <= log2(#F) + 1 <= 33
 
-//! An axis-aligned box.
-struct Box {
-    std::array<double, 3> lo, hi;
+//! An axis-aligned box, its corners of type T. A point added is rounded outwards to T (exact
+//! for double), so the box holds it.
+template <typename T>
+struct AxisBox {
+    std::array<T, 3> lo, hi;
     void add(const Eigen::Vector3d& p) {
         for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
+            T below = static_cast<T>(p[k]), above = below;
+            if (below > p[k]) below = std::nextafter(below, -std::numeric_limits<T>::infinity());
+            if (above < p[k]) above = std::nextafter(above, std::numeric_limits<T>::infinity());
+            lo[k] = std::min(lo[k], below);
+            hi[k] = std::max(hi[k], above);
         }
     }
-    void add(const Box& b) {
+    void add(const AxisBox& b) {
         for (int k = 0; k < 3; ++k) {
             lo[k] = std::min(lo[k], b.lo[k]);
             hi[k] = std::max(hi[k], b.hi[k]);
         }
     }
-    static Box empty() {
-        Box b;
-        b.lo.fill(std::numeric_limits<double>::infinity());
-        b.hi.fill(-std::numeric_limits<double>::infinity());
+    static AxisBox empty() {
+        AxisBox b;
+        b.lo.fill(std::numeric_limits<T>::infinity());
+        b.hi.fill(-std::numeric_limits<T>::infinity());
         return b;
     }
 };
+
+using Box = AxisBox<double>;
+//! A box of unit normals, in floats: half the memory, the bound still safe.
+using NormalBox = AxisBox<float>;
 
 //! A node of the tree. Inner nodes have two children stored next to each other.
 struct Node {
     Box box;       //!< bounding box of the node's triangles
     int32_t first; //!< leaf: first triangle (tree order); inner: index of the left child
     int32_t count; //!< leaf: number of triangles (>= 1); inner: 0
-};
-
-//! A box of unit normals, in floats: each double rounded down (lo) or up (hi) on the way.
-struct NormalBox {
-    std::array<float, 3> lo, hi;
-    void add(const Eigen::Vector3d& n) {
-        for (int k = 0; k < 3; ++k) {
-            float below = static_cast<float>(n[k]), above = below;
-            if (below > n[k]) below = std::nextafter(below, -std::numeric_limits<float>::infinity());
-            if (above < n[k]) above = std::nextafter(above, std::numeric_limits<float>::infinity());
-            lo[k] = std::min(lo[k], below);
-            hi[k] = std::max(hi[k], above);
-        }
-    }
-    void add(const NormalBox& b) {
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = std::min(lo[k], b.lo[k]);
-            hi[k] = std::max(hi[k], b.hi[k]);
-        }
-    }
-    static NormalBox empty() {
-        NormalBox b;
-        b.lo.fill(std::numeric_limits<float>::infinity());
-        b.hi.fill(-std::numeric_limits<float>::infinity());
-        return b;
-    }
 };
 
 //! The triangles under a node: a range of the tree order, from its leftmost leaf's first to its
