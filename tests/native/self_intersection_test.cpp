@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 #include <vector>
 
@@ -99,4 +101,26 @@ TEST(SelfIntersection, TheTreeFindsWhatEveryPairFinds) {
     const long crossing = brute_force_count(two);
     EXPECT_GT(crossing, 0);
     EXPECT_EQ(count(two), crossing);
+}
+
+TEST(SelfIntersection, PairsAreTheCountedOnesInOrderEachCrossing) {
+    Mesh m = test::make_icosphere(2);
+    std::mt19937 random(4);
+    std::uniform_real_distribution<double> push(-0.3, 0.3);
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v)
+        for (int k = 0; k < 3; ++k) m.points(v, k) += push(random);
+    const AabbTree tree(m);
+    const auto pairs = self_intersecting_pairs(m, tree);
+    EXPECT_GT(pairs.size(), 20u);
+    EXPECT_EQ(static_cast<long>(pairs.size()), count_self_intersections(m, tree));
+    EXPECT_TRUE(std::is_sorted(pairs.begin(), pairs.end()));
+    EXPECT_EQ(std::adjacent_find(pairs.begin(), pairs.end()), pairs.end());
+    auto triangle = [&](int32_t f) {
+        return std::array<int32_t, 3>{m.triangles(f, 0), m.triangles(f, 1), m.triangles(f, 2)};
+    };
+    auto at = [&](int32_t f) { return std::array<Eigen::Vector3d, 3>{corner_of(m, f, 0), corner_of(m, f, 1), corner_of(m, f, 2)}; };
+    for (const auto& [s, t] : pairs) {
+        EXPECT_LT(s, t);
+        EXPECT_TRUE(triangles_cross(triangle(s), at(s), triangle(t), at(t))) << s << " " << t;
+    }
 }

@@ -6,6 +6,10 @@
 #include "liftremesh/aabb_tree.h"
 #include "liftremesh/mesh.h"
 
+#include <array>
+#include <utility>
+#include <vector>
+
 namespace liftremesh {
 
 //! Whether the segment pq passes through the inside of triangle abc: its ends strictly on
@@ -26,5 +30,13 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
 //! count is of those tested only. Throws InvalidInput if an index is out of range.
 constexpr long kCandidatesPerTriangle = 200;
 long count_self_intersections(const Mesh& mesh, const AabbTree& tree);
+
+//! The pairs count_self_intersections counts, each (s, t) with s < t, sorted.
+std::vector<std::pair<int32_t, int32_t>> self_intersecting_pairs(const Mesh& mesh, const AabbTree& tree);
+
+//! Whether two triangles, given by their vertex indices and corners, cross as
+//! count_self_intersections counts them (shared vertices told by index).
+bool triangles_cross(const std::array<int32_t, 3>& f, const std::array<Eigen::Vector3d, 3>& f_corners,
+                     const std::array<int32_t, 3>& g, const std::array<Eigen::Vector3d, 3>& g_corners);
 
 } // namespace liftremesh
