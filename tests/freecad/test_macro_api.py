@@ -129,6 +129,24 @@ class MacroApiTest(unittest.TestCase):
         self.assertFalse(any("topology differs" in w for w in mesh.warnings), mesh.warnings)
         self.assertTrue(any("away from the source" in w for w in mesh.warnings), mesh.warnings)
 
+    @unittest.skipUnless(os.path.exists(os.path.join(IDF_LIBS, "TSM_103_01_L_DV_A.stp")),
+                         "FreeCAD's Idflibs connector TSM_103_01_L_DV_A.stp not found")
+    def test_the_peers_connector_at_a_fine_size_keeps_its_handles_and_has_no_crossing(self):
+        """The FreeCAD connector of ../shared/PEERS.md (genus 8), whose housings meet through
+        features 0.108 mm high: at 40000 vertices (edges of 0.1 mm) the result is a closed
+        oriented surface with its Euler characteristic and no triangles through each other
+        (untangle.h: before it, 9 pairs crossed and TetGen aborted on it), for the report and for
+        FreeCAD's own check alike."""
+        shape = Part.read(os.path.join(IDF_LIBS, "TSM_103_01_L_DV_A.stp"))
+        source = MeshPart.meshFromShape(Shape=shape, LinearDeflection=0.1, AngularDeflection=math.radians(30))
+        result = LiftRemesh.remesh_mesh(source, vertices=40000)
+        points, triangles = mesh_checks.arrays(result.mesh)
+        self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles))
+        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), -14)
+        self.assertEqual(result.report["output"]["self_intersections"], 0)
+        self.assertFalse(result.mesh.hasSelfIntersections())
+        self.assertEqual(result.warnings, [])
+
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""
         face = Part.Face(Part.Wire(Part.makeCircle(20)))
