@@ -19,29 +19,55 @@ std::array<Eigen::Vector3d, 3> corners(const EditableMesh& mesh, const Tri& t) {
     return {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
 }
 
-//! How many triangles of `mesh`, other than those numbered `skip`, `a` and `b` cross (the same
-//! triangle counted once for each of the two it crosses). A scan of every triangle behind a box
-//! test: untangling runs only where crossings are, a few dozen quads on a mesh.
-long crossings_of(const EditableMesh& mesh, const Tri& a, const Tri& b, const std::array<int, 2>& skip) {
-    const std::array<Eigen::Vector3d, 3> pa = corners(mesh, a), pb = corners(mesh, b);
-    Eigen::Vector3d lo = pa[0], hi = pa[0];
-    for (const auto* p : {&pa, &pb})
-        for (const Eigen::Vector3d& x : *p) {
-            lo = lo.cwiseMin(x);
-            hi = hi.cwiseMax(x);
-        }
-    long count = 0;
-    for (size_t g = 0; g < mesh.tris.size(); ++g) {
-        if (static_cast<int>(g) == skip[0] || static_cast<int>(g) == skip[1]) continue;
-        const Tri& t = mesh.tris[g];
-        const std::array<Eigen::Vector3d, 3> pt = corners(mesh, t);
-        const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]), thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
-        if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
-        count += triangles_cross(a, pa, t, pt) ? 1 : 0;
-        count += triangles_cross(b, pb, t, pt) ? 1 : 0;
+//! The triangles of a pass: a tree of the mesh as the pass found it, and the triangles the
+//! pass has flipped since (their boxes are no longer the tree's).
+struct PassTriangles {
+    const EditableMesh& mesh;
+    AabbTree tree;
+    std::vector<char> flipped; // per triangle
+    std::vector<int> flipped_list;
+    std::vector<int32_t> found; // scratch
+
+    explicit PassTriangles(const EditableMesh& m) : mesh(m), tree(m.to_mesh()), flipped(m.tris.size(), 0) {}
+
+    void mark_flipped(int t) {
+        if (!flipped[static_cast<size_t>(t)]) flipped_list.push_back(t);
+        flipped[static_cast<size_t>(t)] = 1;
     }
-    return count;
-}
+
+    //! How many triangles, other than those numbered `skip`, `a` and `b` cross (a triangle
+    //! crossing both counted twice): those the tree finds near the two, unless flipped since,
+    //! and those flipped since, each behind a box test.
+    long crossings_of(const Tri& a, const Tri& b, const std::array<int, 2>& skip) {
+        const std::array<Eigen::Vector3d, 3> pa = corners(mesh, a), pb = corners(mesh, b);
+        Eigen::Vector3d lo = pa[0], hi = pa[0];
+        for (const auto* p : {&pa, &pb})
+            for (const Eigen::Vector3d& x : *p) {
+                lo = lo.cwiseMin(x);
+                hi = hi.cwiseMax(x);
+            }
+        // Every point of the box is within half its diagonal of its centre; a margin for rounding.
+        const Eigen::Vector3d centre = 0.5 * (lo + hi);
+        const double reach = 0.5 * (hi - lo).norm() * (1.0 + 1e-9) + 1e-12 * (1.0 + centre.norm());
+        found.clear();
+        tree.triangles_within(centre, reach, found);
+        long count = 0;
+        auto test = [&](int g) {
+            if (g == skip[0] || g == skip[1]) return;
+            const Tri& t = mesh.tris[static_cast<size_t>(g)];
+            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, t);
+            const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]);
+            const Eigen::Vector3d thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
+            if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return;
+            count += triangles_cross(a, pa, t, pt) ? 1 : 0;
+            count += triangles_cross(b, pb, t, pt) ? 1 : 0;
+        };
+        for (int32_t g : found)
+            if (!flipped[static_cast<size_t>(g)]) test(g);
+        for (int g : flipped_list) test(g);
+        return count;
+    }
+};
 
 } // namespace
 
@@ -53,6 +79,7 @@ UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<
     UntangleStats stats;
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
         EditableMesh edit(mesh);
+        PassTriangles triangles(edit);
         std::vector<char> around(edit.tris.size(), 0), changed;
         for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
         const auto accept = [&](const EditableMesh::Quad& q) {
@@ -61,12 +88,16 @@ UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<
             if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
             const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
             if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
-            if (!(crossings_of(edit, n1, n2, {q.t1, q.t2}) < crossings_of(edit, t1, t2, {q.t1, q.t2}))) return false;
+            if (!(triangles.crossings_of(n1, n2, {q.t1, q.t2}) < triangles.crossings_of(t1, t2, {q.t1, q.t2})))
+                return false;
             const double near_before = std::max(triangle_distance_from_input(edit, t1, input),
                                                 triangle_distance_from_input(edit, t2, input));
             const double near_after = std::max(triangle_distance_from_input(edit, n1, input),
                                                triangle_distance_from_input(edit, n2, input));
-            return near_after <= std::max(near_before, params.tolerance);
+            if (!(near_after <= std::max(near_before, params.tolerance))) return false;
+            triangles.mark_flipped(q.t1); // flip_pass flips what it accepts
+            triangles.mark_flipped(q.t2);
+            return true;
         };
         const long flips = edit.flip_pass_around(around, accept, changed);
         if (flips == 0) break;
