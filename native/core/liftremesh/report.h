@@ -31,7 +31,8 @@ struct RemeshReport {
     long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
-    long edges_flipped = 0;              //!< edges flipped for triangle quality at the end (quality_polish.h)
+    long edges_flipped = 0;              //!< edges flipped at the end: for quality (quality_polish.h), onto knife
+                                         //!< edges (crease_snap.h), out of crossings (untangle.h)
     long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h) and for triangle quality at the end (quality_polish.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     std::vector<StageTime> timings;
