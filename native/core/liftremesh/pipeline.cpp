@@ -221,12 +221,13 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     AabbTree output_tree(out);
     std::vector<std::pair<int32_t, int32_t>> crossings = self_intersecting_pairs(out, output_tree);
     if (!crossings.empty()) {
+        output_tree = AabbTree(Mesh{}); // freed while untangling, which makes its own
         UntangleParams untangling;
         untangling.tolerance = towards_input.tolerance;
         UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling);
         report.edges_flipped += untangled.flipped;
         crossings = std::move(untangled.crossings);
-        if (untangled.flipped > 0) output_tree = AabbTree(out);
+        output_tree = AabbTree(out);
     }
     clock.end();
 

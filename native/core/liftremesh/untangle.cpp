@@ -69,6 +69,36 @@ struct PassTriangles {
     }
 };
 
+//! One pass of flips around the triangles of `crossings` (see untangle()), written into
+//! `mesh`; the pass's copies of the mesh are gone when it returns. Returns the flips.
+long untangle_pass(Mesh& mesh, const AabbTree& input, const std::vector<std::pair<int32_t, int32_t>>& crossings,
+                   const UntangleParams& params) {
+    EditableMesh edit(mesh);
+    PassTriangles triangles(edit);
+    std::vector<char> around(edit.tris.size(), 0), changed;
+    for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
+    const auto accept = [&](const EditableMesh::Quad& q) {
+        const Tri &t1 = edit.tris[q.t1], &t2 = edit.tris[q.t2];
+        const auto [n1, n2] = EditableMesh::flipped(q);
+        if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
+        const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
+        if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
+        if (!(triangles.crossings_of(n1, n2, {q.t1, q.t2}) < triangles.crossings_of(t1, t2, {q.t1, q.t2})))
+            return false;
+        const double near_before = std::max(triangle_distance_from_input(edit, t1, input),
+                                            triangle_distance_from_input(edit, t2, input));
+        const double near_after = std::max(triangle_distance_from_input(edit, n1, input),
+                                           triangle_distance_from_input(edit, n2, input));
+        if (!(near_after <= std::max(near_before, params.tolerance))) return false;
+        triangles.mark_flipped(q.t1); // flip_pass flips what it accepts
+        triangles.mark_flipped(q.t2);
+        return true;
+    };
+    const long flips = edit.flip_pass_around(around, accept, changed);
+    if (flips > 0) edit.write_to(mesh);
+    return flips;
+}
+
 } // namespace
 
 UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
@@ -78,31 +108,9 @@ UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<
         throw InvalidInput("untangle: the tolerance must be positive and finite, the passes not negative");
     UntangleStats stats;
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-        EditableMesh edit(mesh);
-        PassTriangles triangles(edit);
-        std::vector<char> around(edit.tris.size(), 0), changed;
-        for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
-        const auto accept = [&](const EditableMesh::Quad& q) {
-            const Tri &t1 = edit.tris[q.t1], &t2 = edit.tris[q.t2];
-            const auto [n1, n2] = EditableMesh::flipped(q);
-            if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
-            const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
-            if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
-            if (!(triangles.crossings_of(n1, n2, {q.t1, q.t2}) < triangles.crossings_of(t1, t2, {q.t1, q.t2})))
-                return false;
-            const double near_before = std::max(triangle_distance_from_input(edit, t1, input),
-                                                triangle_distance_from_input(edit, t2, input));
-            const double near_after = std::max(triangle_distance_from_input(edit, n1, input),
-                                               triangle_distance_from_input(edit, n2, input));
-            if (!(near_after <= std::max(near_before, params.tolerance))) return false;
-            triangles.mark_flipped(q.t1); // flip_pass flips what it accepts
-            triangles.mark_flipped(q.t2);
-            return true;
-        };
-        const long flips = edit.flip_pass_around(around, accept, changed);
+        const long flips = untangle_pass(mesh, input, crossings, params);
         if (flips == 0) break;
         stats.flipped += flips;
-        edit.write_to(mesh);
         crossings = self_intersecting_pairs(mesh, AabbTree(mesh));
     }
     stats.crossings = std::move(crossings);
