@@ -223,6 +223,39 @@ TEST(AabbTree, TrianglesWithinAreThoseNearerThanTheRadius) {
     EXPECT_TRUE(none.empty());
 }
 
+TEST(AabbTree, TrianglesMeetingABoxAreThoseWhoseBoxesMeetIt) {
+    const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
+    const AabbTree tree(m);
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> coord(-1.6, 1.6), side(0.0, 0.8);
+    long total = 0;
+    for (int i = 0; i < 300; ++i) {
+        const Eigen::Vector3d lo(coord(rng), coord(rng), 0.3 * coord(rng));
+        const Eigen::Vector3d hi = lo + Eigen::Vector3d(side(rng), side(rng), i % 10 == 0 ? 0.0 : side(rng));
+        std::vector<int32_t> found = {-7}; // appended to, not cleared
+        tree.triangles_meeting_box(lo, hi, found);
+        ASSERT_EQ(found.front(), -7);
+        found.erase(found.begin());
+        std::sort(found.begin(), found.end());
+        std::vector<int32_t> expected;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+            Eigen::Vector3d tlo = Eigen::Vector3d::Constant(1e300), thi = -tlo;
+            for (int j = 0; j < 3; ++j) {
+                tlo = tlo.cwiseMin(m.points.row(m.triangles(f, j)).transpose());
+                thi = thi.cwiseMax(m.points.row(m.triangles(f, j)).transpose());
+            }
+            if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all())
+                expected.push_back(static_cast<int32_t>(f));
+        }
+        EXPECT_EQ(found, expected) << i;
+        total += static_cast<long>(found.size());
+    }
+    EXPECT_GT(total, 300);
+    std::vector<int32_t> none;
+    AabbTree(Mesh{}).triangles_meeting_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), none);
+    EXPECT_TRUE(none.empty());
+}
+
 TEST(AabbTree, ClosestWhereIsTheNearestAcceptedTriangleWithinTheRadius) {
     const Mesh m = liftremesh::test::make_torus(1.0, 0.3, 40, 16);
     const AabbTree tree(m);

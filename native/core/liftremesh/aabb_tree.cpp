@@ -357,6 +357,30 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     }
 }
 
+void AabbTree::triangles_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                     std::vector<int32_t>& out) const {
+    const auto& nodes = impl_->nodes;
+    if (nodes.empty()) return;
+    Box query = Box::empty();
+    query.add(lo);
+    query.add(hi);
+    int32_t stack[2 * kMaxDepth];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes[stack[--top]];
+        if (!boxes_meet(node.box, query)) continue;
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t)
+                if (boxes_meet(impl_->boxes[t], query)) out.push_back(impl_->ids[t]);
+            continue;
+        }
+        assert(top + 2 <= 2 * kMaxDepth);
+        stack[top++] = node.first + 1;
+        stack[top++] = node.first;
+    }
+}
+
 ClosestPoint AabbTree::search(const Eigen::Vector3d& q, ClosestPoint best, bool first_hit, const FacingAgainst* facing,
                               const std::function<bool(int32_t, const Eigen::Vector3d&)>* accept) const {
     const auto& nodes = impl_->nodes;

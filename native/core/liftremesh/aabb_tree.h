@@ -62,6 +62,10 @@ public:
     //! the tree holds them. Thread-safe (const).
     void triangles_within(const Eigen::Vector3d& q, double r, std::vector<int32_t>& out) const;
 
+    //! Appends to `out` the triangles whose bounding boxes meet the closed box [lo, hi], in the
+    //! order the tree holds them. Thread-safe (const).
+    void triangles_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int32_t>& out) const;
+
     //! Calls visit(s, t) once for each pair of triangles s != t (the mesh's indices, in either
     //! order) whose bounding boxes meet, until it returns false: the tree against itself, node
     //! pairs whose boxes are apart skipped whole. Single-threaded.

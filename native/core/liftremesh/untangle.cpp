@@ -36,8 +36,8 @@ struct PassTriangles {
     }
 
     //! How many triangles, other than those numbered `skip`, `a` and `b` cross (a triangle
-    //! crossing both counted twice): those the tree finds near the two, unless flipped since,
-    //! and those flipped since, each behind a box test.
+    //! crossing both counted twice): those whose boxes meet the two's, as the tree finds them
+    //! unless flipped since, and as they are now for those flipped since.
     long crossings_of(const Tri& a, const Tri& b, const std::array<int, 2>& skip) {
         const std::array<Eigen::Vector3d, 3> pa = corners(mesh, a), pb = corners(mesh, b);
         Eigen::Vector3d lo = pa[0], hi = pa[0];
@@ -46,25 +46,24 @@ struct PassTriangles {
                 lo = lo.cwiseMin(x);
                 hi = hi.cwiseMax(x);
             }
-        // Every point of the box is within half its diagonal of its centre; a margin for rounding.
-        const Eigen::Vector3d centre = 0.5 * (lo + hi);
-        const double reach = 0.5 * (hi - lo).norm() * (1.0 + 1e-9) + 1e-12 * (1.0 + centre.norm());
-        found.clear();
-        tree.triangles_within(centre, reach, found);
         long count = 0;
         auto test = [&](int g) {
             if (g == skip[0] || g == skip[1]) return;
             const Tri& t = mesh.tris[static_cast<size_t>(g)];
             const std::array<Eigen::Vector3d, 3> pt = corners(mesh, t);
-            const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]);
-            const Eigen::Vector3d thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
-            if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return;
             count += triangles_cross(a, pa, t, pt) ? 1 : 0;
             count += triangles_cross(b, pb, t, pt) ? 1 : 0;
         };
+        found.clear();
+        tree.triangles_meeting_box(lo, hi, found);
         for (int32_t g : found)
             if (!flipped[static_cast<size_t>(g)]) test(g);
-        for (int g : flipped_list) test(g);
+        for (int g : flipped_list) {
+            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, mesh.tris[static_cast<size_t>(g)]);
+            const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]);
+            const Eigen::Vector3d thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
+            if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all()) test(g);
+        }
         return count;
     }
 };
