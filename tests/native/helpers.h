@@ -4,6 +4,7 @@
 #include "liftremesh/mesh.h"
 #include "liftremesh/params.h"
 #include "liftremesh/rvd.h"
+#include "liftremesh/solid_parts.h"
 
 #include <Eigen/Geometry>
 
@@ -108,12 +109,16 @@ inline Mesh make_cube(double s, int n) {
 
 //! The two meshes as one: a's points and triangles, then b's, its indices shifted past a's points.
 inline Mesh joined(const Mesh& a, const Mesh& b) {
-    Mesh both;
-    both.points.resize(a.points.rows() + b.points.rows(), 3);
-    both.points << a.points, b.points;
-    both.triangles.resize(a.triangles.rows() + b.triangles.rows(), 3);
-    both.triangles << a.triangles, (b.triangles.array() + static_cast<int32_t>(a.points.rows())).matrix();
+    Mesh both = a;
+    liftremesh::append(both, b);
     return both;
+}
+
+//! The box [lo, hi], each face an n x n grid split into triangles, outward oriented.
+inline Mesh make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int n) {
+    Mesh box = make_cube(0.5, n);
+    for (int k = 0; k < 3; ++k) box.points.col(k) = box.points.col(k).array() * (hi[k] - lo[k]) + 0.5 * (hi[k] + lo[k]);
+    return box;
 }
 
 //! Two icospheres of radius 1 touching at one vertex: the second is the first reflected through

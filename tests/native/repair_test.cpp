@@ -14,7 +14,7 @@ using namespace liftremesh::test;
 namespace {
 
 // Appends triangles (and points) to a mesh.
-void append(Mesh& m, const std::vector<std::array<int32_t, 3>>& tris, const std::vector<Eigen::Vector3d>& pts = {}) {
+void add_triangles(Mesh& m, const std::vector<std::array<int32_t, 3>>& tris, const std::vector<Eigen::Vector3d>& pts = {}) {
     const Eigen::Index np = m.points.rows(), nf = m.triangles.rows();
     m.points.conservativeResize(np + static_cast<Eigen::Index>(pts.size()), 3);
     for (size_t i = 0; i < pts.size(); ++i) m.points.row(np + static_cast<Eigen::Index>(i)) = pts[i].transpose();
@@ -61,11 +61,11 @@ TEST(Repair, RemovesDegenerateAndDuplicateTriangles) {
     Mesh m = sphere;
     const auto t0 = tri(m, 0), t1 = tri(m, 1), t2 = tri(m, 2);
     // Duplicates: same order, rotated, reversed.
-    append(m, {t0, {t1[1], t1[2], t1[0]}, {t2[0], t2[2], t2[1]}, {t0[2], t0[1], t0[0]}});
+    add_triangles(m, {t0, {t1[1], t1[2], t1[0]}, {t2[0], t2[2], t2[1]}, {t0[2], t0[1], t0[0]}});
     // A repeated index, and a zero-area triangle on the edge t0[0]-t0[1] through its midpoint.
     const Eigen::Vector3d mid = 0.5 * (sphere.points.row(t0[0]) + sphere.points.row(t0[1])).transpose();
     const auto m_index = static_cast<int32_t>(m.points.rows());
-    append(m, {{t0[0], t0[0], t0[2]}, {t0[0], m_index, t0[1]}}, {mid});
+    add_triangles(m, {{t0[0], t0[0], t0[2]}, {t0[0], m_index, t0[1]}}, {mid});
     ASSERT_GT(topology(m).nonmanifold_edges, 0);
 
     const RepairStats s = make_manifold(m);
@@ -115,7 +115,7 @@ TEST(Repair, RemovesAFinOnAnExistingEdgeInEitherOrientation) {
         const Eigen::Vector3d a = m.points.row(t[0]).transpose(), b = m.points.row(t[1]).transpose();
         const Eigen::Vector3d tip = 0.5 * (a + b) * 1.0 + (a + b).normalized() * (b - a).norm() * 0.87;
         const auto k = static_cast<int32_t>(m.points.rows());
-        append(m, {reversed ? std::array<int32_t, 3>{t[1], t[0], k} : std::array<int32_t, 3>{t[0], t[1], k}}, {tip});
+        add_triangles(m, {reversed ? std::array<int32_t, 3>{t[1], t[0], k} : std::array<int32_t, 3>{t[0], t[1], k}}, {tip});
         ASSERT_EQ(topology(m).nonmanifold_edges, 1);
         const RepairStats s = make_manifold(m);
         EXPECT_EQ(s.nonmanifold_removed, 1) << "reversed fin: " << reversed;
@@ -139,7 +139,7 @@ TEST(Repair, KeepsOneDiagonalOfFourCocircularSites) {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
         if (m.triangles(f2, j) != b && m.triangles(f2, j) != c) d = m.triangles(f2, j);
-    append(m, {{a, b, d}, {a, d, c}}); // the other diagonal, oriented like the surface
+    add_triangles(m, {{a, b, d}, {a, d, c}}); // the other diagonal, oriented like the surface
     ASSERT_EQ(topology(m).nonmanifold_edges, 4);
     const RepairStats s = make_manifold(m);
     EXPECT_EQ(s.nonmanifold_removed, 2);
@@ -170,7 +170,7 @@ TEST(Repair, TwoSpheresTouchingAtAVertexKeepTheLargerFan) {
         for (int j = 0; j < 3; ++j) t[j] = B.triangles(f, j) == 0 ? shared : B.triangles(f, j) + offset;
         tris.push_back(t);
     }
-    append(m, tris, pts);
+    add_triangles(m, tris, pts);
     ASSERT_EQ(topology(m).nonmanifold_vertices, 1);
     ASSERT_EQ(topology(m).chi, 3); // 2 + 2 - 1 shared vertex
 
@@ -222,7 +222,7 @@ TEST(Repair, TwoSpheresSharingAnEdgeKeepAConsistentPair) {
     std::vector<std::array<int32_t, 3>> tris;
     for (Eigen::Index f = 0; f < B.triangles.rows(); ++f)
         tris.push_back({remap[B.triangles(f, 0)], remap[B.triangles(f, 1)], remap[B.triangles(f, 2)]});
-    append(m, tris, pts);
+    add_triangles(m, tris, pts);
     const Eigen::Index A1 = 0, A2 = across(A, 0, a, b), B2 = A.triangles.rows();
     Eigen::Index B1 = -1;
     for (Eigen::Index f = A.triangles.rows() + 1; f < m.triangles.rows(); ++f)
