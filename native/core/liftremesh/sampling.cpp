@@ -9,15 +9,28 @@
 
 namespace liftremesh {
 
+namespace {
+// Triangle f's share of the sites: |T_p| sqrt(w_p), 0 for an invalid triangle.
+double sampling_weight(const LiftedSurface& surface, Eigen::Index f) {
+    if (!surface.valid[f]) return 0.0;
+    return triangle_area(surface.points.row(surface.triangles(f, 0)), surface.points.row(surface.triangles(f, 1)),
+                         surface.points.row(surface.triangles(f, 2))) *
+           std::sqrt(surface.weights[f]);
+}
+} // namespace
+
+double sampling_mass(const LiftedSurface& surface) {
+    double total = 0.0;
+    for (Eigen::Index f = 0; f < surface.triangles.rows(); ++f) total += sampling_weight(surface, f);
+    return total;
+}
+
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed) {
     const Eigen::Index nf = surface.triangles.rows();
     std::vector<double> cumulative(nf);
     double total = 0.0;
     for (Eigen::Index f = 0; f < nf; ++f) {
-        if (surface.valid[f])
-            total += triangle_area(surface.points.row(surface.triangles(f, 0)), surface.points.row(surface.triangles(f, 1)),
-                                   surface.points.row(surface.triangles(f, 2))) *
-                     std::sqrt(surface.weights[f]);
+        total += sampling_weight(surface, f);
         cumulative[f] = total;
     }
     if (!(total > 0.0)) throw InvalidInput("the surface has no triangle of positive area to place sites on");

@@ -14,4 +14,8 @@ namespace liftremesh {
 //! Rows come sorted along a Morton curve (near in space, near in memory) for cache locality.
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed);
 
+//! The sum of |T_p| sqrt(w_p) over the valid triangles: what random_sites draws from. Pieces
+//! remeshed on their own share the sites as it would spread them over all of them.
+double sampling_mass(const LiftedSurface& surface);
+
 } // namespace liftremesh
