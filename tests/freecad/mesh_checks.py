@@ -34,6 +34,22 @@ def euler_characteristic(points, triangles):
     return len(used) - len(edges) + len(triangles)
 
 
+def connected_components(triangles):
+    """Number of pieces the triangles make, joined through shared vertices."""
+    parent = {int(v): int(v) for v in np.unique(triangles)}
+
+    def find(v):
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for a, b, c in triangles.tolist():
+        parent[find(b)] = find(a)
+        parent[find(c)] = find(a)
+    return len({find(v) for v in parent})
+
+
 def shape_euler_characteristic(shape):
     """chi of the boundary surface from the BRep: V - E + sum over faces of (2 - wires), a face with
     k wires being a disk with k - 1 holes (a periodic face is cut open along its seam edge)."""

@@ -47,7 +47,7 @@ def step_part(name="TCMT1107_4.stp"):
 
 
 class MacroApiTest(unittest.TestCase):
-    def check_remesh(self, shape, vertices):
+    def check_remesh(self, shape, vertices, sharp_delta=0.02):
         shape_chi = mesh_checks.shape_euler_characteristic(shape)
         mesh = LiftRemesh.remesh_shape(shape, vertices=vertices)
         points, triangles = mesh_checks.arrays(mesh)
@@ -63,7 +63,7 @@ class MacroApiTest(unittest.TestCase):
         sharp_shape = mesh_checks.shape_sharp_edge_length(shape)
         sharp_mesh = mesh_checks.sharp_edge_length(points, triangles)
         self.assertGreater(sharp_shape, 0.0)
-        self.assertAlmostEqual(sharp_mesh / sharp_shape, 1.0, delta=0.02)
+        self.assertAlmostEqual(sharp_mesh / sharp_shape, 1.0, delta=sharp_delta)
         # Hausdorff distance to the shape, through a fine tessellation of it (0.01 mm deflection)
         fine = mesh_checks.arrays(MeshPart.meshFromShape(
             Shape=shape, LinearDeflection=shape.BoundBox.DiagonalLength * 1e-4,
@@ -119,8 +119,9 @@ class MacroApiTest(unittest.TestCase):
 
     def test_plates_closer_than_the_edge_length_stay_apart(self):
         """Two plates 1 mm thick and 0.2 mm apart, remeshed with ~3.7 mm edges: each stays a closed
-        surface of its own (thin_walls.h lifts their faces apart), measured on the mesh. Its 1 mm
-        sides are still cut by so long edges, which the distance warning says."""
+        surface of its own (each is remeshed on its own, solid_parts.h, and thin_walls.h lifts a
+        plate's two faces apart), measured on the mesh. Its 1 mm sides are still cut by so long
+        edges, which the distance warning says."""
         plates = Part.makeBox(20, 20, 1).fuse(Part.makeBox(20, 20, 1, FreeCAD.Vector(0, 0, 1.2)))
         mesh = LiftRemesh.remesh_mesh(MeshPart.meshFromShape(plates, 0.1, 0.5), vertices=150)
         points, triangles = mesh_checks.arrays(mesh.mesh)
@@ -146,6 +147,20 @@ class MacroApiTest(unittest.TestCase):
         self.assertEqual(result.report["output"]["self_intersections"], 0)
         self.assertFalse(result.mesh.hasSelfIntersections())
         self.assertEqual(result.warnings, [])
+
+    @unittest.skipUnless(os.path.exists(os.path.join(IDF_LIBS, "RLF_12545.stp")),
+                         "FreeCAD's Idflibs inductor RLF_12545.stp not found")
+    def test_solids_closer_than_the_edge_length_come_out_on_their_own(self):
+        """FreeCAD's inductor RLF_12545: a body and two terminals 0.01 mm from it, at edges of
+        about 0.2 mm. Remeshed together, the three solids merged (Euler characteristic 0 for 6,
+        kappa min 0.000); each is now remeshed on its own (solid_parts.h). Its sharp edges come
+        out 2.3% short (ratio 0.977, measured), the body's 3% (210.7 to 204.3 mm, 60 degrees): the
+        sharp-edge gap the README lists for hinge and lever, hence 3% here, not 2%."""
+        shape = step_part("RLF_12545.stp")
+        self.assertEqual(len(shape.Solids), 3)
+        self.assertEqual(mesh_checks.shape_euler_characteristic(shape), 6)
+        points, triangles = self.check_remesh(shape, 6000, sharp_delta=0.03)
+        self.assertEqual(mesh_checks.connected_components(triangles), 3)
 
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""

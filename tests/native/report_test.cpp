@@ -42,7 +42,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     const std::string json = to_json(sample_report());
     for (const char* key :
          {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
-          "evaluations", "energy_initial", "energy_final", "sites_split", "holes_filled", "triangles_removed", "edges_collapsed",
+          "evaluations", "energy_initial", "energy_final", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
           "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed",
           "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
@@ -102,6 +102,26 @@ TEST(Report, WarnsOfTrianglesPassingThroughEachOtherWhateverTheInputHas) {
     ASSERT_EQ(w.size(), 1u);
     EXPECT_NE(w[0].find("607 pairs of triangles passing through each other (the source 424)"), std::string::npos) << w[0];
     EXPECT_NE(to_json(r).find("\"self_intersections\": 607"), std::string::npos) << to_json(r);
+}
+
+TEST(Report, WarnsOfPartsKeepingTheSourcesTriangles) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = 6;
+    r.parts = 3;
+    EXPECT_TRUE(report_warnings(r).empty());
+    r.parts_kept = 1;
+    std::vector<std::string> w = report_warnings(r);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("of the source's 3 parts, 1 is thinner or smaller than the target edge length and keeps the "
+                        "source's triangles"),
+              std::string::npos)
+        << w[0];
+    r.parts_kept = 2;
+    w = report_warnings(r);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("2 are thinner or smaller than the target edge length and keep the source's"), std::string::npos)
+        << w[0];
+    EXPECT_NE(to_json(r).find("\"parts_kept\": 2"), std::string::npos) << to_json(r);
 }
 
 TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {

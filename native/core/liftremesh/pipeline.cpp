@@ -21,11 +21,14 @@
 #include "liftremesh/rvd.h"
 #include "liftremesh/sampling.h"
 #include "liftremesh/self_intersection.h"
+#include "liftremesh/solid_parts.h"
 #include "liftremesh/thin_walls.h"
 #include "liftremesh/threads.h"
 #include "liftremesh/untangle.h"
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <sstream>
 #include <cmath>
 
@@ -111,6 +114,212 @@ long target_site_count(const RemeshParams& params, double area) {
     return static_cast<long>(n);
 }
 
+namespace {
+
+// How far from the input the repair's steps may take the surface where it was nearer, in input
+// units: 0.15 of the spacing (the Hausdorff refinement's tolerance, shared by the later steps).
+double repair_tolerance(double spacing, const UnitBallTransform& to_unit) { return 0.15 * spacing * to_unit.scale; }
+
+// One piece of the input (solid_parts.h), lifted and ready for its sites.
+struct Piece {
+    const Mesh* input = nullptr; // the piece in input units: the whole input when it is the only piece
+    const Mesh* unit = nullptr;  // the same in the unit ball
+    Mesh own_input, own_unit;    // the piece's copies, when it is not the whole input
+    std::unique_ptr<AabbTree> tree; // over *input: thin walls, then distances to the input in the repair
+    bool closed = false;            // a closed component (solid_parts.h)
+    LiftedSurface surface;
+    long sites = 0;
+};
+
+// Vertex normals, densities and the lifted surface of a piece (Section 5.2.1, Eqs. 12, 22-24), from
+// its own triangles only: a solid's normals and walls are its own, however near another one lies.
+void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing) {
+    const Mesh& input = *piece.input;
+    const Mesh& unit = *piece.unit;
+    const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
+    // Built once the normals' own tree is freed, so that the two are never held at once.
+    piece.tree = std::make_unique<AabbTree>(input);
+    const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta); // Eqs. 22-24
+    LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
+    if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
+        // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
+        // stay apart on the lifted surface (thin_walls.h).
+        const Eigen::VectorXd thickness = wall_thickness(input, *piece.tree, reach * to_unit.scale) / to_unit.scale;
+        lifted = lift(unit.points, normals, thin_wall_lifting(thickness, params.nu, spacing));
+    } else if (params.nu > 0.0) {
+        lifted = lift(unit.points, normals, params.nu); // Eq. 12: nu alone keeps every wall's sides apart
+    }
+    piece.surface = make_lifted_surface(lifted, unit.triangles, density_weights(rho, params.delta));
+}
+
+// The sites each piece gets: the number wanted, shared as random_sites would spread them over
+// the pieces together (by sampling_mass), largest remainders rounded up, and at least 4 per
+// piece with any mass, so that no solid is left without a surface. A single piece gets all.
+void share_sites(std::vector<Piece>& pieces, long wanted) {
+    if (pieces.size() == 1) {
+        pieces[0].sites = wanted;
+        return;
+    }
+    std::vector<double> mass(pieces.size());
+    double total = 0.0;
+    for (size_t k = 0; k < pieces.size(); ++k) total += mass[k] = sampling_mass(pieces[k].surface);
+    std::vector<std::pair<double, size_t>> remainder;
+    long given = 0;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+        const double share = total > 0.0 ? static_cast<double>(wanted) * mass[k] / total : 0.0;
+        pieces[k].sites = static_cast<long>(std::floor(share));
+        given += pieces[k].sites;
+        remainder.emplace_back(share - std::floor(share), k);
+    }
+    std::sort(remainder.begin(), remainder.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (size_t i = 0; i < remainder.size() && given < wanted; ++i, ++given) ++pieces[remainder[i].second].sites;
+    for (size_t k = 0; k < pieces.size(); ++k)
+        if (mass[k] > 0.0) pieces[k].sites = std::max(pieces[k].sites, 4L);
+}
+
+// Optimises the sites of one piece, triangulates them and repairs the result (all but the
+// untangling, which sees every piece at once), in input units; adds its counts to the report.
+Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
+                  double spacing, StageClock& clock, const ProgressCallback& progress, RemeshReport& report) {
+    const Mesh& input = *piece.input;
+    const AabbTree& input_tree = *piece.tree;
+    const long sites_wanted = piece.sites;
+
+    clock.begin("optimize");
+    LiftedPoints sites = random_sites(piece.surface, sites_wanted, seed);
+    RvdCache diagram; // the optimiser's neighbour lists and seeds, reused by the triangulation
+    const OptimizeResult opt =
+        optimize_sites(piece.surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram);
+    report.sites += sites.rows();
+    report.iterations = std::max(report.iterations, opt.iterations);
+    report.evaluations += opt.evaluations;
+    report.energy_initial += opt.energy_initial;
+    report.energy_final += opt.energy_final;
+    clock.end();
+
+    clock.begin("rdt");
+    // Eq. 4, Algorithm 3, line 11
+    RestrictedDelaunay rdt = restricted_delaunay(piece.surface, sites, params.threads, {}, &diagram);
+    Mesh out = std::move(rdt.mesh);
+    report.sites_split += rdt.split_sites;
+    if (out.triangles.rows() == 0)
+        throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
+    clock.end();
+
+    clock.begin("repair");
+    const RepairStats repaired = make_manifold(out);
+    report.triangles_removed += repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
+    if (params.fill_holes) {
+        const Eigen::Index first_fill = out.triangles.rows();
+        report.holes_filled += fill_holes(out, hole_is_artefact(*piece.unit, out.points, 1.5 * spacing)); // Section 5.2.2
+        // Vertices inside the patches, which the paper leaves empty: at most a tenth of those asked for.
+        refine_patches(out, first_fill, spacing, sites_wanted / 10);
+    }
+    if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
+    report.edges_collapsed += collapse_short_edges(out);
+    undo_transform(to_unit, out.points);
+    // After the collapse, which may keep an interior end point of an edge at the boundary, and in
+    // the input's coordinates, so that snapped corners are exactly the input's.
+    const BoundarySnapStats snapped = snap_boundary(out, input, {}, &input_tree);
+    report.boundary_vertices_snapped += snapped.moved();
+    report.triangles_removed += snapped.flaps_removed;
+    // Sharp edges cut off by a chamfer (edge crunching, Section 6.2.2) get their crease points;
+    // after the snap, so that an open input's boundary, where the output now lies, is no witness.
+    HausdorffRefinementParams towards_input;
+    towards_input.tolerance = repair_tolerance(spacing, to_unit);
+    towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
+    towards_input.max_distance = spacing * to_unit.scale;
+    towards_input.max_inserted = sites_wanted / 100;
+    report.vertices_inserted +=
+        snapped.corners_inserted + refine_towards_input(out, input, towards_input, &input_tree).inserted;
+    // Knife edges, which the feature term leaves cut (crease_snap.h): after the refinement, which
+    // inserts the points of their corners and of a few places.
+    CreaseSnapParams onto_creases;
+    onto_creases.radius = 0.35 * spacing * to_unit.scale;
+    onto_creases.corner_radius = spacing * to_unit.scale;
+    onto_creases.tolerance = towards_input.tolerance;
+    onto_creases.kappa_floor = towards_input.kappa_floor;
+    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, input, input_tree, onto_creases);
+    // The worst triangles raised by flips and vertex moves that keep the surface on the input.
+    QualityPolishParams polish;
+    polish.tolerance = towards_input.tolerance;
+    const QualityPolishStats polished = polish_quality(out, input_tree, polish);
+    report.edges_flipped += onto_crease.flipped + polished.flipped;
+    report.vertices_moved += onto_crease.moved + polished.moved;
+    clock.end();
+    return out;
+}
+
+// A run's counts (all but the qualities and timings) added to the whole run's.
+void add_counts(RemeshReport& to, const RemeshReport& run) {
+    to.sites += run.sites;
+    to.iterations = std::max(to.iterations, run.iterations);
+    to.evaluations += run.evaluations;
+    to.energy_initial += run.energy_initial;
+    to.energy_final += run.energy_final;
+    to.sites_split += run.sites_split;
+    to.holes_filled += run.holes_filled;
+    to.triangles_removed += run.triangles_removed;
+    to.edges_collapsed += run.edges_collapsed;
+    to.vertices_inserted += run.vertices_inserted;
+    to.edges_flipped += run.edges_flipped;
+    to.vertices_moved += run.vertices_moved;
+    to.boundary_vertices_snapped += run.boundary_vertices_snapped;
+}
+
+// Whether a small closed piece came out as the surface it is (closed, manifold, with its Euler
+// characteristic, plus one per fan of a non-manifold vertex split, as report.h expects) and with
+// no triangle worse than its input's worst, or kappa 0.3: else its input's triangles are better.
+bool keeps_piece(const MeshQuality& in, const Mesh& out) {
+    if (out.triangles.rows() == 0) return false;
+    const MeshQuality q = measure_quality(out);
+    return q.boundary_edges == 0 && q.nonmanifold_edges == 0 &&
+           q.euler_characteristic == in.euler_characteristic + static_cast<int>(in.extra_vertex_fans) &&
+           q.kappa_min >= std::min(in.kappa_min, 0.3);
+}
+
+// Largest share of the input's area a closed piece may have to come out as its input's triangles
+// when remeshing it fails (remesh_one_of_many).
+constexpr double kSmallPiece = 0.05;
+
+// One of several pieces, its counts added to the report. A closed piece of at most kSmallPiece of
+// the input's area that does not come out as the surface it is (keeps_piece), being thinner than
+// its cells (the two rings of TSM_103_01_L_DV_A, 0.108 mm high, at 6 sites), is remeshed again
+// with twice the sites while `retry_sites` (shared by all pieces) lasts, each time at most
+// max(64, wanted / 10); if none does, it comes out as its input's triangles
+// (report.parts_kept), as Gmsh keeps a surface smaller than the mesh size with its curves' own
+// points. A larger piece, or the open ones, comes out as remesh_piece makes it: the report's
+// warnings tell.
+Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
+                        double spacing, double input_area, long sites_wanted, long& retry_sites, StageClock& clock,
+                        const ProgressCallback& progress, RemeshReport& report) {
+    if (piece.sites == 0) return {}; // no triangle of positive area: nothing to remesh
+    const bool small = piece.closed && surface_area(*piece.input) <= kSmallPiece * input_area;
+    const MeshQuality in = small ? measure_quality(*piece.input) : MeshQuality{};
+    for (;;) {
+        RemeshReport run;
+        Mesh part;
+        try {
+            part = remesh_piece(piece, seed, params, to_unit, spacing, clock, progress, run);
+        } catch (const TopologyFailure&) { // too few sites for a triangle
+            if (!small) throw;
+        }
+        if (!small || keeps_piece(in, part)) {
+            add_counts(report, run);
+            return part;
+        }
+        const long more = 2 * piece.sites;
+        if (more > std::max(64L, sites_wanted / 10) || more > retry_sites) {
+            ++report.parts_kept;
+            return *piece.input;
+        }
+        retry_sites -= more;
+        piece.sites = more;
+    }
+}
+
+} // namespace
+
 RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const ProgressCallback& progress) {
     params.validate();
     const ThreadCountScope threads(params.threads); // every parallel loop of the run, not just the diagram's
@@ -125,105 +334,84 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     remove_unreferenced_vertices(input);
     if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
     check_extent(input, "input");
-    const long sites_wanted = target_site_count(params, surface_area(input));
+    const double input_area = surface_area(input);
+    const long sites_wanted = target_site_count(params, input_area);
     check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
     report.input = measure_quality(input);
     report.bbox_diagonal = bounding_box_diagonal(input.points);
     const UnitBallTransform to_unit = unit_ball_transform(input); // Section 5.1
     Mesh unit = input;
     apply_transform(to_unit, unit.points);
-    clock.end();
-
     // The edge length of an equilateral mesh with the vertices asked for, in unit-ball units.
     const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
-
-    clock.begin("normals");
-    const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
-    // Built once the normals' own tree is freed, so that the two are never held at once.
-    const AabbTree input_tree(input); // thin walls here, distances to the input from the repair on
-    const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta);      // Eqs. 22-24
-    LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
-    if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
-        // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
-        // stay apart on the lifted surface (thin_walls.h).
-        const Eigen::VectorXd thickness = wall_thickness(input, input_tree, reach * to_unit.scale) / to_unit.scale;
-        lifted = lift(unit.points, normals, thin_wall_lifting(thickness, params.nu, spacing));
-    } else if (params.nu > 0.0) {
-        lifted = lift(unit.points, normals, params.nu); // Eq. 12: nu alone keeps every wall's sides apart
+    // Each closed component on its own (solid_parts.h); one piece, the whole input, most often.
+    std::vector<Piece> pieces;
+    {
+        const std::vector<SolidPart> parts = solid_parts(input);
+        pieces.resize(parts.size());
+        for (size_t k = 0; k < parts.size(); ++k) pieces[k].closed = parts[k].closed;
+        if (parts.size() == 1) {
+            pieces[0].input = &input;
+            pieces[0].unit = &unit;
+        } else {
+            for (size_t k = 0; k < parts.size(); ++k) {
+                pieces[k].own_input = submesh(input, parts[k].triangles);
+                pieces[k].own_unit = submesh(unit, parts[k].triangles);
+                pieces[k].input = &pieces[k].own_input;
+                pieces[k].unit = &pieces[k].own_unit;
+            }
+            unit = Mesh{};
+        }
     }
-    const LiftedSurface surface = make_lifted_surface(lifted, unit.triangles, density_weights(rho, params.delta));
+    report.parts = static_cast<long>(pieces.size());
     clock.end();
 
-    clock.begin("optimize");
-    LiftedPoints sites = random_sites(surface, sites_wanted, params.seed);
-    RvdCache diagram; // the optimiser's neighbour lists and seeds, reused by the triangulation
-    const OptimizeResult opt =
-        optimize_sites(surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram);
-    report.sites = sites.rows();
-    report.iterations = opt.iterations;
-    report.evaluations = opt.evaluations;
-    report.energy_initial = opt.energy_initial;
-    report.energy_final = opt.energy_final;
-    clock.end();
+    for (Piece& piece : pieces) {
+        clock.begin("normals");
+        lift_piece(piece, params, to_unit, spacing);
+        clock.end();
+    }
+    share_sites(pieces, sites_wanted);
 
-    clock.begin("rdt");
     Mesh& out = result.mesh;
-    // Eq. 4, Algorithm 3, line 11
-    RestrictedDelaunay rdt = restricted_delaunay(surface, sites, params.threads, {}, &diagram);
-    out = std::move(rdt.mesh);
-    report.sites_split = rdt.split_sites;
+    long retry_sites = sites_wanted; // remesh_one_of_many's retries: at most one more run's worth
+    for (size_t k = 0; k < pieces.size(); ++k) {
+        Piece& piece = pieces[k];
+        if (pieces.size() == 1) {
+            out = remesh_piece(piece, params.seed, params, to_unit, spacing, clock, progress, report);
+            break;
+        }
+        // The optimiser's progress as one run over all pieces, each the same share.
+        const ProgressCallback piece_progress =
+            progress ? ProgressCallback([&progress, k, n = static_cast<int>(pieces.size())](const Progress& p) {
+                Progress all = p;
+                if (all.total > 0) {
+                    all.iteration += static_cast<int>(k) * all.total;
+                    all.total *= n;
+                }
+                return progress(all);
+            })
+                     : ProgressCallback();
+        append(out, remesh_one_of_many(piece, params.seed + k, params, to_unit, spacing, input_area, sites_wanted,
+                                       retry_sites, clock, piece_progress, report));
+        piece = Piece{}; // its copies, surface and tree freed
+    }
     if (out.triangles.rows() == 0)
-        throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
-    clock.end();
+        throw TopologyFailure("no part of the surface came out: too few vertices for this surface");
+
+    // The whole input's tree: the only piece's, or built once the pieces' trees are freed.
+    const AabbTree input_tree = pieces.size() == 1 ? std::move(*pieces[0].tree) : AabbTree(input);
+    pieces.clear();
 
     clock.begin("repair");
-    const RepairStats repaired = make_manifold(out);
-    report.triangles_removed = repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
-    if (params.fill_holes) {
-        const Eigen::Index first_fill = out.triangles.rows();
-        report.holes_filled = fill_holes(out, hole_is_artefact(unit, out.points, 1.5 * spacing)); // Section 5.2.2
-        // Vertices inside the patches, which the paper leaves empty: at most a tenth of those asked for.
-        refine_patches(out, first_fill, spacing, sites_wanted / 10);
-    }
-    if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
-    report.edges_collapsed = collapse_short_edges(out);
-    undo_transform(to_unit, out.points);
-    // After the collapse, which may keep an interior end point of an edge at the boundary, and in
-    // the input's coordinates, so that snapped corners are exactly the input's.
-    const BoundarySnapStats snapped = snap_boundary(out, input, {}, &input_tree);
-    report.boundary_vertices_snapped = snapped.moved();
-    report.triangles_removed += snapped.flaps_removed;
-    // Sharp edges cut off by a chamfer (edge crunching, Section 6.2.2) get their crease points;
-    // after the snap, so that an open input's boundary, where the output now lies, is no witness.
-    HausdorffRefinementParams towards_input;
-    towards_input.tolerance = 0.15 * spacing * to_unit.scale;
-    towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
-    towards_input.max_distance = spacing * to_unit.scale;
-    towards_input.max_inserted = sites_wanted / 100;
-    report.vertices_inserted =
-        snapped.corners_inserted + refine_towards_input(out, input, towards_input, &input_tree).inserted;
-    // Knife edges, which the feature term leaves cut (crease_snap.h): after the refinement, which
-    // inserts the points of their corners and of a few places.
-    CreaseSnapParams onto_creases;
-    onto_creases.radius = 0.35 * spacing * to_unit.scale;
-    onto_creases.corner_radius = spacing * to_unit.scale;
-    onto_creases.tolerance = towards_input.tolerance;
-    onto_creases.kappa_floor = towards_input.kappa_floor;
-    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, input, input_tree, onto_creases);
-    // The worst triangles raised by flips and vertex moves that keep the surface on the input.
-    QualityPolishParams polish;
-    polish.tolerance = towards_input.tolerance;
-    const QualityPolishStats polished = polish_quality(out, input_tree, polish);
-    report.edges_flipped = onto_crease.flipped + polished.flipped;
-    report.vertices_moved = onto_crease.moved + polished.moved;
-    // Triangles passing through each other, untangled by flips (untangle.h). The tree and the
-    // crossings left serve the report.
+    // Triangles passing through each other, untangled by flips (untangle.h), across pieces too.
+    // The tree and the crossings left serve the report.
     AabbTree output_tree(out);
     std::vector<std::pair<int32_t, int32_t>> crossings = self_intersecting_pairs(out, output_tree);
     if (!crossings.empty()) {
         output_tree = AabbTree(Mesh{}); // freed while untangling, which makes its own
         UntangleParams untangling;
-        untangling.tolerance = towards_input.tolerance;
+        untangling.tolerance = repair_tolerance(spacing, to_unit);
         UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling);
         report.edges_flipped += untangled.flipped;
         crossings = std::move(untangled.crossings);

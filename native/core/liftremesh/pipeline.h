@@ -14,13 +14,17 @@ struct RemeshResult {
 };
 
 //! Remeshes `input` (any triangle soup: welded, checked, never modified):
-//!  1. weld exactly equal vertices; centre and scale into the unit ball (Section 5.1);
+//!  1. weld exactly equal vertices; centre and scale into the unit ball (Section 5.1); each closed
+//!     component apart from the rest (solid_parts.h), steps 2 to 5 running on each piece alone
+//!     with its share of the sites, and a small closed piece that does not come out as the
+//!     surface it is, with triangles as good as its own, again with more sites or as it was;
 //!  2. vertex normals on geometric neighbourhoods of radius eta (5.2.1), densities (Eqs. 22-24),
 //!     lifting x + nu n (Eq. 12);
 //!  3. random sites, L-BFGS on the objective of Eq. 25 in two phases (6.2.2);
 //!  4. restricted Delaunay triangulation (Eq. 4) projected to R^3 (Algorithm 3, line 11);
 //!  5. a clean oriented manifold (repair.h), holes the input does not have filled (5.2.2);
 //!     on an open input, the output's boundary vertices put onto the input's boundary (boundary_snap.h);
+//!     the pieces together, triangles passing through each other untangled (untangle.h);
 //!  6. quality report (Eq. 26, Hausdorff distance to the input).
 //! Throws InvalidInput (bad mesh or parameters), NumericalFailure, TopologyFailure, Cancelled.
 RemeshResult remesh(const Mesh& input, const RemeshParams& params, const ProgressCallback& progress = {});

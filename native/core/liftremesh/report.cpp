@@ -129,6 +129,12 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         std::to_string(out.euler_characteristic) + ", source " + std::to_string(in.euler_characteristic) +
                         "): parts thinner than the target edge length merged or broke; ask for more vertices or a "
                         "smaller edge length");
+    if (report.parts_kept > 0)
+        found.push_back("of the source's " + std::to_string(report.parts) + " parts, " +
+                        std::to_string(report.parts_kept) +
+                        (report.parts_kept == 1 ? " is thinner or smaller than the target edge length and keeps"
+                                                : " are thinner or smaller than the target edge length and keep") +
+                        " the source's triangles; ask for more vertices or a smaller edge length");
     if (out.boundary_loops > in.boundary_loops)
         found.push_back("the result has " + std::to_string(out.boundary_loops) + " boundary loops, the source " +
                         std::to_string(in.boundary_loops) + ": holes the source does not have");
@@ -152,6 +158,8 @@ std::string to_json(const RemeshReport& report) {
                         {"hausdorff_relative", json_number(report.hausdorff_relative)},
                         {"mean_distance_relative", json_number(report.mean_distance_relative)},
                         {"sites", json_number(report.sites)},
+                        {"parts", json_number(report.parts)},
+                        {"parts_kept", json_number(report.parts_kept)},
                         {"iterations", json_number(static_cast<long>(report.iterations))},
                         {"evaluations", json_number(static_cast<long>(report.evaluations))},
                         {"energy_initial", json_number(report.energy_initial)},

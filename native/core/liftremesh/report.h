@@ -20,6 +20,10 @@ struct RemeshReport {
     double hausdorff_relative = 0.0;     //!< two-sided Hausdorff / bbox_diagonal
     double mean_distance_relative = 0.0; //!< mean sampled distance / bbox_diagonal
     long sites = 0;                      //!< number of sites optimised
+    long parts = 1;                      //!< pieces remeshed on their own: each closed component, and the
+                                         //!< open ones together (solid_parts.h)
+    long parts_kept = 0;                 //!< of those, closed components too thin or small for their sites,
+                                         //!< which keep the input's triangles (pipeline.h)
     int iterations = 0;                  //!< L-BFGS iterations done
     int evaluations = 0;                 //!< objective evaluations (diagrams computed), line searches included
     double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)
@@ -59,7 +63,7 @@ int expected_euler_characteristic(const RemeshReport& report);
 //! The warnings of a finished report: another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
-//! (holes), triangles passing through each other (output.self_intersections, whatever the
+//! (holes), closed parts of the input that keep its triangles (parts_kept), triangles passing through each other (output.self_intersections, whatever the
 //! input's), or a Hausdorff distance above kFarFromInput. The input's cracks that the result
 //! closes (fewer boundary loops) and the non-manifold vertices it splits are not another
 //! topology: its Euler characteristic may be expected_euler_characteristic().
