@@ -372,6 +372,12 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         clock.end();
     }
     share_sites(pieces, sites_wanted);
+    if (pieces.size() > 1) { // at least 4 sites a piece: many small solids may need more than asked for
+        long shared = 0;
+        for (const Piece& piece : pieces) shared += piece.sites;
+        if (shared > sites_wanted)
+            check_memory_budget(shared, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
+    }
 
     Mesh& out = result.mesh;
     long retry_sites = sites_wanted; // remesh_one_of_many's retries: at most one more run's worth
