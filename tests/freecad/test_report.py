@@ -109,6 +109,9 @@ class CrackedSphereReport(unittest.TestCase):
         html = report_view.report_html(dict(self.report, cracks_closed=0, vertex_fans_split=2))
         self.assertNotIn("crack(s)", html)
         self.assertIn("2 fan(s) of the source's non-manifold vertices split", html)
+        self.assertNotIn("parts remeshed", html)
+        html = report_view.report_html(dict(self.report, parts=3))
+        self.assertIn("3 parts remeshed one by one", html)
 
 
 class SelfIntersectionReport(unittest.TestCase):

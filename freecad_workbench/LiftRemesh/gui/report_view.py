@@ -47,6 +47,8 @@ def report_html(report):
         extra.append("%d crack(s) of the source closed" % report["cracks_closed"])
     if report.get("vertex_fans_split"):
         extra.append("%d fan(s) of the source's non-manifold vertices split" % report["vertex_fans_split"])
+    if (report.get("parts") or 1) > 1:
+        extra.append("%d parts remeshed one by one" % report["parts"])
     seconds = sum((report.get("timings") or {}).values())
     if seconds:
         extra.append("remeshed in %.1f s" % seconds)
