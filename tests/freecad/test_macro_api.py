@@ -134,7 +134,7 @@ class MacroApiTest(unittest.TestCase):
                          "FreeCAD's Idflibs connector TSM_103_01_L_DV_A.stp not found")
     def test_the_peers_connector_at_a_fine_size_keeps_its_handles_and_has_no_crossing(self):
         """The FreeCAD connector of ../shared/PEERS.md (genus 8), whose housings meet through
-        features 0.108 mm high: at 40000 vertices (edges of 0.1 mm) the result is a closed
+        two ring-shaped inner shells 0.108 mm high: at 40000 vertices (edges of 0.1 mm) the result is a closed
         oriented surface with its Euler characteristic and no triangles through each other
         (untangle.h: before it, 9 pairs crossed and TetGen aborted on it), for the report and for
         FreeCAD's own check alike."""
@@ -147,6 +147,11 @@ class MacroApiTest(unittest.TestCase):
         self.assertEqual(result.report["output"]["self_intersections"], 0)
         self.assertFalse(result.mesh.hasSelfIntersections())
         self.assertEqual(result.warnings, [])
+        # The solid's two ring-shaped inner shells, 0.108 mm high, are remeshed on their own
+        # (solid_parts.h), with more sites than their share (retried) rather than kept as they were.
+        self.assertEqual(result.report["parts"], 3)
+        self.assertEqual(result.report["parts_kept"], 0)
+        self.assertGreater(result.report["sites"], 40000)
 
     @unittest.skipUnless(os.path.exists(os.path.join(IDF_LIBS, "RLF_12545.stp")),
                          "FreeCAD's Idflibs inductor RLF_12545.stp not found")
