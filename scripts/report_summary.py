@@ -94,6 +94,7 @@ def main(argv):
         problems = topology_problems(report)
         crossing = crossing_problem(report)
         closed, split = report["cracks_closed"], report["vertex_fans_split"]
+        parts, kept = report.get("parts", 1), report.get("parts_kept", 0)  # reports before solid_parts.h lack them
     except (OSError, ValueError, KeyError, TypeError) as e:
         sys.stderr.write("report_summary: cannot read %s: %s: %s\n" % (args[0], type(e).__name__, e))
         return 2
@@ -104,7 +105,9 @@ def main(argv):
         print("check : %s 2-manifold with the input's topology"
               % ("closed" if report["output"]["boundary_edges"] == 0 else "open")
               + (", %d crack(s) of the input closed" % closed if closed else "")
-              + (", %d fan(s) of its non-manifold vertices split" % split if split else ""))
+              + (", %d fan(s) of its non-manifold vertices split" % split if split else "")
+              + (", %d parts remeshed one by one" % parts if parts > 1 else "")
+              + (" (%d with the source's triangles)" % kept if kept else ""))
     if crossing:
         print("check : NOT free of self-intersections: " + crossing)
     return 1 if (problems or crossing) and "--check" in argv else 0

@@ -92,6 +92,11 @@ class CrackedSphereReport(unittest.TestCase):
         status, text = self.summary(crossing)
         self.assertEqual(status, 0, text)
         self.assertIn("self-intersections 5 -> 3", text)
+        # Several solids, one kept as it was: said, and no failure.
+        status, text = self.summary(dict(self.report, parts=3, parts_kept=1))
+        self.assertEqual(status, 0, text)
+        self.assertIn("3 parts remeshed one by one (1 with the source's triangles)", text)
+        self.assertNotIn("parts remeshed", self.summary(self.report)[1])
         # A report without the counts is refused, naming the key.
         lacking = dict(self.report)
         del lacking["cracks_closed"]
