@@ -18,6 +18,20 @@ using namespace liftremesh;
 
 namespace {
 
+// What a query that appends triangle indices finds, sorted; it must append, not clear.
+template <class Query>
+std::vector<int32_t> appended_by(const Query& query) {
+    std::vector<int32_t> found = {-7};
+    query(found);
+    if (found.empty() || found.front() != -7) {
+        ADD_FAILURE() << "the query cleared the vector it appends to";
+        return found;
+    }
+    found.erase(found.begin());
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
 //! Closest point by testing every triangle.
 ClosestPoint brute_force_closest(const Mesh& mesh, const Eigen::Vector3d& q) {
     ClosestPoint best{Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(), -1};
@@ -201,11 +215,8 @@ TEST(AabbTree, TrianglesWithinAreThoseNearerThanTheRadius) {
         for (int i = 0; i < 300; ++i) {
             const Eigen::Vector3d q(coord(rng), coord(rng), 0.3 * coord(rng));
             const double r = radius(rng);
-            std::vector<int32_t> found = {-7}; // appended to, not cleared
-            tree.triangles_within(q, r, found);
-            ASSERT_EQ(found.front(), -7);
-            found.erase(found.begin());
-            std::sort(found.begin(), found.end());
+            const std::vector<int32_t> found =
+                appended_by([&](std::vector<int32_t>& out) { tree.triangles_within(q, r, out); });
             std::vector<int32_t> expected;
             for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
                 const Eigen::Vector3d p = closest_point_on_triangle(q, m.points.row(m.triangles(f, 0)).transpose(),
@@ -232,11 +243,8 @@ TEST(AabbTree, TrianglesMeetingABoxAreThoseWhoseBoxesMeetIt) {
     for (int i = 0; i < 300; ++i) {
         const Eigen::Vector3d lo(coord(rng), coord(rng), 0.3 * coord(rng));
         const Eigen::Vector3d hi = lo + Eigen::Vector3d(side(rng), side(rng), i % 10 == 0 ? 0.0 : side(rng));
-        std::vector<int32_t> found = {-7}; // appended to, not cleared
-        tree.triangles_meeting_box(lo, hi, found);
-        ASSERT_EQ(found.front(), -7);
-        found.erase(found.begin());
-        std::sort(found.begin(), found.end());
+        const std::vector<int32_t> found =
+            appended_by([&](std::vector<int32_t>& out) { tree.triangles_meeting_box(lo, hi, out); });
         std::vector<int32_t> expected;
         for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
             Eigen::Vector3d tlo = Eigen::Vector3d::Constant(1e300), thi = -tlo;
