@@ -4,7 +4,6 @@
 #include "liftremesh/mesh.h"
 #include "liftremesh/params.h"
 #include "liftremesh/rvd.h"
-#include "liftremesh/solid_parts.h"
 
 #include <Eigen/Geometry>
 

@@ -239,19 +239,46 @@ void check_extent(const Mesh& mesh, const char* what) {
     throw InvalidInput(message.str());
 }
 
-void remove_unreferenced_vertices(Mesh& mesh) {
-    std::vector<int32_t> remap(mesh.points.rows(), -1);
-    int32_t next = 0;
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+namespace {
+
+// Triangles row(0) .. row(count - 1) of `mesh`, with the vertices they use renumbered in order
+// of first use.
+template <class Row>
+Mesh compacted(const Mesh& mesh, Eigen::Index count, const Row& row) {
+    std::vector<int32_t> remap(static_cast<size_t>(mesh.points.rows()), -1);
+    std::vector<int32_t> used;
+    Mesh part;
+    part.triangles.resize(count, 3);
+    for (Eigen::Index k = 0; k < count; ++k)
         for (int j = 0; j < 3; ++j) {
-            auto& i = mesh.triangles(f, j);
-            if (remap[i] < 0) remap[i] = next++;
-            i = remap[i];
+            const int32_t v = mesh.triangles(row(k), j);
+            if (remap[v] < 0) {
+                remap[v] = static_cast<int32_t>(used.size());
+                used.push_back(v);
+            }
+            part.triangles(k, j) = remap[v];
         }
-    Points kept(next, 3);
-    for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(remap.size()); ++i)
-        if (remap[i] >= 0) kept.row(remap[i]) = mesh.points.row(i);
-    mesh.points = std::move(kept);
+    part.points.resize(static_cast<Eigen::Index>(used.size()), 3);
+    for (size_t i = 0; i < used.size(); ++i) part.points.row(static_cast<Eigen::Index>(i)) = mesh.points.row(used[i]);
+    return part;
+}
+
+} // namespace
+
+void remove_unreferenced_vertices(Mesh& mesh) {
+    mesh = compacted(mesh, mesh.triangles.rows(), [](Eigen::Index f) { return f; });
+}
+
+Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids) {
+    return compacted(mesh, static_cast<Eigen::Index>(ids.size()), [&ids](Eigen::Index k) { return ids[k]; });
+}
+
+void append(Mesh& mesh, const Mesh& part) {
+    const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
+    mesh.points.conservativeResize(nv + part.points.rows(), 3);
+    mesh.points.bottomRows(part.points.rows()) = part.points;
+    mesh.triangles.conservativeResize(nf + part.triangles.rows(), 3);
+    mesh.triangles.bottomRows(part.triangles.rows()) = part.triangles.array() + static_cast<int32_t>(nv);
 }
 
 } // namespace liftremesh

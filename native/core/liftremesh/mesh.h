@@ -147,7 +147,15 @@ constexpr double kMaxExtentRatio = 1e9;
 //! Every vertex counts: call it once the unreferenced ones are removed. `what` names the mesh.
 void check_extent(const Mesh& mesh, const char* what);
 
-//! Drops vertices no triangle references and renumbers the triangles.
+//! Drops vertices no triangle references and renumbers the triangles (vertices in order of
+//! first use).
 void remove_unreferenced_vertices(Mesh& mesh);
+
+//! The triangles `ids` of `mesh` (rows in that order) with the vertices they use, in order of
+//! first use.
+Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids);
+
+//! Appends the vertices and triangles of `part` to `mesh`.
+void append(Mesh& mesh, const Mesh& part);
 
 } // namespace liftremesh

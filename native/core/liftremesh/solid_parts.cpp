@@ -41,31 +41,4 @@ std::vector<SolidPart> solid_parts(const Mesh& mesh) {
     return parts;
 }
 
-Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids) {
-    std::vector<int32_t> remap(static_cast<size_t>(mesh.points.rows()), -1);
-    std::vector<int32_t> used;
-    Mesh part;
-    part.triangles.resize(static_cast<Eigen::Index>(ids.size()), 3);
-    for (size_t k = 0; k < ids.size(); ++k)
-        for (int j = 0; j < 3; ++j) {
-            int32_t& to = remap[mesh.triangles(ids[k], j)];
-            if (to < 0) {
-                to = static_cast<int32_t>(used.size());
-                used.push_back(mesh.triangles(ids[k], j));
-            }
-            part.triangles(static_cast<Eigen::Index>(k), j) = to;
-        }
-    part.points.resize(static_cast<Eigen::Index>(used.size()), 3);
-    for (size_t i = 0; i < used.size(); ++i) part.points.row(static_cast<Eigen::Index>(i)) = mesh.points.row(used[i]);
-    return part;
-}
-
-void append(Mesh& mesh, const Mesh& part) {
-    const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
-    mesh.points.conservativeResize(nv + part.points.rows(), 3);
-    mesh.points.bottomRows(part.points.rows()) = part.points;
-    mesh.triangles.conservativeResize(nf + part.triangles.rows(), 3);
-    mesh.triangles.bottomRows(part.triangles.rows()) = part.triangles.array() + static_cast<int32_t>(nv);
-}
-
 } // namespace liftremesh

@@ -27,11 +27,4 @@ struct SolidPart {
 //! part holding every triangle when the mesh is one component, or when no component is closed.
 std::vector<SolidPart> solid_parts(const Mesh& mesh);
 
-//! The triangles `ids` of `mesh` (rows in that order) with the vertices they use, in order of
-//! first use.
-Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids);
-
-//! Appends the vertices and triangles of `part` to `mesh`.
-void append(Mesh& mesh, const Mesh& part);
-
 } // namespace liftremesh
