@@ -267,15 +267,17 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
     to.boundary_vertices_snapped += run.boundary_vertices_snapped;
 }
 
-// Whether a small closed piece came out as the surface it is (closed, manifold, with its Euler
-// characteristic, plus one per fan of a non-manifold vertex split, as report.h expects) and with
-// no triangle worse than its input's worst, or kappa 0.3: else its input's triangles are better.
+// Whether a small closed piece came out as the surface it is (closed, manifold, with the Euler
+// characteristic the report expects of it, so that it raises no topology warning) and with no
+// triangle worse than its input's worst, or kappa 0.3: else its input's triangles are better.
 bool keeps_piece(const MeshQuality& in, const Mesh& out) {
     if (out.triangles.rows() == 0) return false;
-    const MeshQuality q = measure_quality(out);
+    RemeshReport run;
+    run.input = in;
+    run.output = measure_quality(out);
+    const MeshQuality& q = run.output;
     return q.boundary_edges == 0 && q.nonmanifold_edges == 0 &&
-           q.euler_characteristic == in.euler_characteristic + static_cast<int>(in.extra_vertex_fans) &&
-           q.kappa_min >= std::min(in.kappa_min, 0.3);
+           q.euler_characteristic == expected_euler_characteristic(run) && q.kappa_min >= std::min(in.kappa_min, 0.3);
 }
 
 // Largest share of the input's area a closed piece may have to come out as its input's triangles
