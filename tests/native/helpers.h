@@ -149,6 +149,22 @@ inline Mesh make_square(double s, int n) {
     return make_mesh(p, f);
 }
 
+//! Two sheets `gap` apart facing each other, as the sides of a slot between two parts of a CAD
+//! solid: the square [-1, 1]^2 in z = 0, facing up, and a diamond of radius 1.2 in z = gap,
+//! facing down, two triangles each. No vertex of either lies across from the other (the corners
+//! of each stand out beyond the other's edges), so a lifting per vertex misses the wall their
+//! overlap, an octagon, is.
+inline Mesh make_offset_sheets(double gap) {
+    Points p(8, 3);
+    p << -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 1.2, 0, gap, 0, 1.2, gap, -1.2, 0, gap, 0, -1.2, gap;
+    Triangles t(4, 3);
+    t << 0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6;
+    Mesh sheets;
+    sheets.points = p;
+    sheets.triangles = t;
+    return sheets;
+}
+
 //! Flat plate [-w/2, w/2] x [-h/2, h/2] (z = 0, normal +z) with a round hole of radius r at the
 //! origin, as a shell midsurface: each side cut into pieces of about `edge`, the four corners
 //! among the cuts, every cut joined to the hole by `rings` rings of quads split in two. The hole

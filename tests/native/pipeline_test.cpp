@@ -207,6 +207,25 @@ TEST(Remesh, PlatesCloserThanTheEdgeLengthStayApart) {
     }
 }
 
+// The two sides of a slot whose triangles share no vertex across (test::make_offset_sheets,
+// 0.05 apart), at 300 vertices: edges of about 0.16, 3 times the gap. The lifting per vertex
+// missed the wall (no vertex lies across from the other side) and the sides were joined:
+// chi -2, -7 and -7 instead of 2, with 5, 2 and 6 pairs of triangles through each other (seeds
+// 1 to 3), measured before sample_wall_thickness (thin_walls.h). With the triangles split where
+// their inside lies across the wall, the sheets keep their topology. (Along the diamond's free
+// rim over the square, where the wall ends within a few hundredths, 9 to 12 triangles still
+// reach down to the square's level, against 31 to 47 before.)
+TEST(Remesh, SidesOfASlotWhoseVerticesAreNotAcrossStayApart) {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        const RemeshResult r = remesh(test::make_offset_sheets(0.05), params_with(300, 5.0, seed));
+        const test::Topology t = test::topology(r.mesh);
+        EXPECT_TRUE(t.oriented_manifold()) << "seed " << seed;
+        EXPECT_EQ(t.chi, 2) << "seed " << seed;
+        EXPECT_EQ(count_self_intersections(r.mesh, AabbTree(r.mesh)), 0) << "seed " << seed;
+        EXPECT_GE(r.report.output.kappa_min, 0.4) << "seed " << seed;
+    }
+}
+
 // An assembly exported as one file, as FreeCAD's RLF_12545 inductor is (Mod/Idf/Idflibs): a body
 // 2 x 2 x 2 and two terminals 0.49 thick, 0.01 from it, at 1000 vertices (edges of about 0.2,
 // 20 times the gap). Remeshed together, the cells reached across the gaps: the surface kept

@@ -1,4 +1,5 @@
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/geometry.h"
 #include "liftremesh/mesh_io.h"
 #include "liftremesh/thin_walls.h"
 #include "helpers.h"
@@ -123,4 +124,125 @@ TEST(WallThickness, ATriangleTurnedOverInAFaceIsNoWall) {
     square.triangles.row(60).tail<2>().reverseInPlace();
     const Eigen::VectorXd t = wall_thickness(square, AabbTree(square), 0.5);
     EXPECT_EQ(t, Eigen::VectorXd::Constant(square.points.rows(), kNoWall));
+}
+
+namespace {
+
+// Whether the point (x, y) of the plane z = 0 lies in both sheets, at least `margin` inside.
+bool in_overlap(double x, double y, double margin) {
+    return std::abs(x) <= 1.0 - margin && std::abs(y) <= 1.0 - margin &&
+           std::abs(x) + std::abs(y) <= 1.2 - std::sqrt(2.0) * margin;
+}
+
+// sample_wall_thickness() of the sheets, at the given spacing, nu 0.01 and its defaults.
+WallSamplingParams sheet_sampling(double spacing) {
+    WallSamplingParams p;
+    p.nu = 0.01;
+    p.spacing = spacing;
+    p.reach = wall_reach(p.nu, spacing);
+    p.tolerance = 0.1 * spacing;
+    p.min_edge = 0.25 * spacing;
+    return p;
+}
+
+} // namespace
+
+// The slot's sides share no vertex across: per vertex there is no wall (the lifting misses it).
+// Split, every vertex of the square inside the overlap has the diamond `gap` away, and the
+// lifting interpolated over the split triangles is within the tolerance of what each point of
+// the overlap needs (but near its rim, where the need drops to nu within less than min_edge).
+TEST(WallSampling, SplitsTrianglesWhereOnlyTheirInsideLiesAcrossAWall) {
+    const double gap = 0.05;
+    const Mesh sheets = test::make_offset_sheets(gap);
+    const AabbTree tree(sheets);
+    const WallSamplingParams params = sheet_sampling(0.2);
+    EXPECT_EQ(wall_thickness(sheets, tree, params.reach), Eigen::VectorXd::Constant(8, kNoWall));
+
+    const WallSampling s = sample_wall_thickness(sheets, tree, params);
+    ASSERT_FALSE(s.midpoints.empty());
+    const Points points = with_midpoints(sheets.points, s.midpoints);
+    ASSERT_EQ(s.thickness.size(), points.rows());
+    ASSERT_EQ(s.parent.size(), static_cast<size_t>(s.triangles.rows()));
+    long inside = 0;
+    for (Eigen::Index v = 0; v < points.rows(); ++v)
+        if (points(v, 2) == 0.0 && in_overlap(points(v, 0), points(v, 1), 1e-9)) {
+            EXPECT_NEAR(s.thickness[v], gap, 1e-12) << v;
+            ++inside;
+        }
+    EXPECT_GE(inside, 1);
+
+    const double needed = wall_lifting(gap, params.nu, params.spacing);
+    ASSERT_GT(needed, params.nu + params.tolerance);
+    long probed = 0;
+    for (double x = -1.0; x <= 1.0; x += 0.01)
+        for (double y = -1.0; y <= 1.0; y += 0.01) {
+            if (!in_overlap(x, y, params.min_edge)) continue;
+            // The square's split triangle holding (x, y, 0), and the lifting interpolated there.
+            double lifting = -1.0;
+            for (Eigen::Index f = 0; f < s.triangles.rows() && lifting < 0.0; ++f) {
+                if (s.parent[static_cast<size_t>(f)] >= 2) continue; // the diamond's
+                const Eigen::Vector3d a = points.row(s.triangles(f, 0)), b = points.row(s.triangles(f, 1)),
+                                      c = points.row(s.triangles(f, 2));
+                const Eigen::Vector3d q(x, y, 0.0);
+                const double area = (b - a).cross(c - a).z();
+                const double la = (b - q).cross(c - q).z() / area, lb = (c - q).cross(a - q).z() / area;
+                const double lc = 1.0 - la - lb;
+                if (la < -1e-12 || lb < -1e-12 || lc < -1e-12) continue;
+                lifting = la * wall_lifting(s.thickness[s.triangles(f, 0)], params.nu, params.spacing) +
+                          lb * wall_lifting(s.thickness[s.triangles(f, 1)], params.nu, params.spacing) +
+                          lc * wall_lifting(s.thickness[s.triangles(f, 2)], params.nu, params.spacing);
+            }
+            ASSERT_GE(lifting, 0.0) << x << " " << y;
+            EXPECT_GE(lifting, needed - params.tolerance - 1e-12) << x << " " << y;
+            ++probed;
+        }
+    EXPECT_GT(probed, 10000);
+}
+
+// The split mesh is the same surface: each triangle lies in its parent, the parents' areas are
+// covered exactly, and the split is conforming (no edge is used three times, and the boundary
+// is the sheets' own, its length unchanged).
+TEST(WallSampling, TheSplitTrianglesCoverTheInputsExactly) {
+    const Mesh sheets = test::make_offset_sheets(0.05);
+    const WallSampling s = sample_wall_thickness(sheets, AabbTree(sheets), sheet_sampling(0.2));
+    Mesh split;
+    split.points = with_midpoints(sheets.points, s.midpoints);
+    split.triangles = s.triangles;
+    std::vector<double> covered(static_cast<size_t>(sheets.triangles.rows()), 0.0);
+    for (Eigen::Index f = 0; f < split.triangles.rows(); ++f) {
+        const int32_t p = s.parent[static_cast<size_t>(f)];
+        const Eigen::Vector3d n = triangle_normal(corner(sheets, p, 0), corner(sheets, p, 1), corner(sheets, p, 2));
+        EXPECT_GT(triangle_normal(corner(split, f, 0), corner(split, f, 1), corner(split, f, 2)).dot(n), 1.0 - 1e-12) << f;
+        for (int j = 0; j < 3; ++j) // each corner in the parent's plane and within its edges
+            for (int k = 0; k < 3; ++k) {
+                const Eigen::Vector3d a = corner(sheets, p, k), b = corner(sheets, p, (k + 1) % 3);
+                EXPECT_GE((b - a).cross(corner(split, f, j) - a).dot(n), -1e-12) << f;
+            }
+        covered[static_cast<size_t>(p)] += triangle_area(corner(split, f, 0), corner(split, f, 1), corner(split, f, 2));
+    }
+    for (Eigen::Index p = 0; p < sheets.triangles.rows(); ++p)
+        EXPECT_NEAR(covered[static_cast<size_t>(p)],
+                    triangle_area(corner(sheets, p, 0), corner(sheets, p, 1), corner(sheets, p, 2)), 1e-12);
+    const auto boundary_length = [](const Mesh& m) {
+        double length = 0.0;
+        for (const EdgeCount& e : edge_counts(m.triangles)) {
+            EXPECT_LE(e.count, 2);
+            if (e.count == 1) length += (m.points.row(e.a) - m.points.row(e.b)).norm();
+        }
+        return length;
+    };
+    EXPECT_NEAR(boundary_length(split), boundary_length(sheets), 1e-12);
+}
+
+// Where the vertices see the walls there is nothing to split: a slab whose faces are grids is
+// left as it is (and not copied), and its thickness is wall_thickness's to the bit.
+TEST(WallSampling, LeavesAMeshWhoseVerticesSeeItsWallsAsItIs) {
+    const Mesh slab = make_slab(0.05);
+    const AabbTree tree(slab);
+    WallSamplingParams params = sheet_sampling(0.2);
+    const WallSampling s = sample_wall_thickness(slab, tree, params);
+    EXPECT_TRUE(s.midpoints.empty());
+    EXPECT_EQ(s.triangles.rows(), 0); // nothing copied: the slab's own
+    EXPECT_TRUE(s.parent.empty());
+    EXPECT_EQ(s.thickness, wall_thickness(slab, tree, params.reach));
 }

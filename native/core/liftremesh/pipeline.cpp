@@ -139,17 +139,34 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
     const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
     // Built once the normals' own tree is freed, so that the two are never held at once.
     piece.tree = std::make_unique<AabbTree>(input);
-    const Eigen::VectorXd rho = triangle_density(unit, normals, params.eta); // Eqs. 22-24
-    LiftedPoints lifted = unit.points; // nu = 0: the plain surface in 3D
+    const Eigen::VectorXd weights = density_weights(triangle_density(unit, normals, params.eta), params.delta); // Eqs. 22-25
     if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
         // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
-        // stay apart on the lifted surface (thin_walls.h).
-        const Eigen::VectorXd thickness = wall_thickness(input, *piece.tree, reach * to_unit.scale) / to_unit.scale;
-        lifted = lift(unit.points, normals, thin_wall_lifting(thickness, params.nu, spacing));
-    } else if (params.nu > 0.0) {
-        lifted = lift(unit.points, normals, params.nu); // Eq. 12: nu alone keeps every wall's sides apart
+        // stay apart on the lifted surface (thin_walls.h), on triangles split where their
+        // vertices alone would miss a wall: the same surface, normals and densities.
+        WallSamplingParams walls;
+        walls.reach = reach * to_unit.scale;
+        walls.nu = params.nu * to_unit.scale;
+        walls.spacing = spacing * to_unit.scale;
+        walls.tolerance = 0.1 * walls.spacing;
+        walls.min_edge = 0.25 * walls.spacing;
+        const WallSampling sampled = sample_wall_thickness(input, *piece.tree, walls);
+        const Eigen::VectorXd lifting = thin_wall_lifting(sampled.thickness / to_unit.scale, params.nu, spacing);
+        if (sampled.midpoints.empty()) {
+            piece.surface = make_lifted_surface(lift(unit.points, normals, lifting), unit.triangles, weights);
+            return;
+        }
+        Eigen::VectorXd split_weights(static_cast<Eigen::Index>(sampled.parent.size()));
+        for (size_t f = 0; f < sampled.parent.size(); ++f)
+            split_weights[static_cast<Eigen::Index>(f)] = weights[sampled.parent[f]];
+        piece.surface = make_lifted_surface(lift(with_midpoints(unit.points, sampled.midpoints),
+                                                 with_midpoints(normals, sampled.midpoints), lifting),
+                                            sampled.triangles, std::move(split_weights));
+        return;
     }
-    piece.surface = make_lifted_surface(lifted, unit.triangles, density_weights(rho, params.delta));
+    // Eq. 12: nu alone keeps every wall's sides apart; nu = 0, the plain surface in 3D.
+    piece.surface = make_lifted_surface(params.nu > 0.0 ? lift(unit.points, normals, params.nu) : LiftedPoints(unit.points),
+                                        unit.triangles, weights);
 }
 
 // The sites each piece gets: the number wanted, shared as random_sites would spread them over

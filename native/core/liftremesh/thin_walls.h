@@ -15,6 +15,9 @@
 #include "liftremesh/aabb_tree.h"
 #include "liftremesh/mesh.h"
 
+#include <array>
+#include <vector>
+
 namespace liftremesh {
 
 //! Two faces are the sides of a wall when their normals are antiparallel within this many
@@ -33,10 +36,58 @@ constexpr double kWallTaperDeg = 25.0;
 //! the wall. Parallel (OpenMP), the same for any thread count.
 Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double reach);
 
+//! Where a wall's far side is nearer than `reach` only across the inside of a large triangle,
+//! none of whose vertices lies across from it (a CAD tessellation's few large triangles on
+//! the two sides of a narrow slot, their corners offset from each other: FreeCAD's inductor
+//! RLF_7030, a slot 0.1 mm wide between its body and a terminal, at 6000 vertices with edges
+//! of 0.22 mm), a lifting per vertex misses the wall. The triangles are then split, edge
+//! midpoint by edge midpoint, where the lifting an edge's midpoint or a triangle's centroid
+//! needs exceeds the one interpolated from its vertices by more than `tolerance`, until no
+//! edge so split would be shorter than `min_edge`. The split mesh describes the same surface;
+//! its triangles lie in those of the input (`parent`), so that the normals and densities
+//! interpolated over it are the input's own.
+struct WallSamplingParams {
+    double reach = 0.0;     //!< the search radius of wall_thickness (wall_reach(nu, spacing))
+    double nu = 0.0;        //!< Eq. 12's lifting scale, as thin_wall_lifting
+    double spacing = 0.0;   //!< the sites' spacing, as thin_wall_lifting
+    double tolerance = 0.0; //!< the lifting an interpolation may miss by (0.1 spacing)
+    double min_edge = 0.0;  //!< edges no longer than this are not split (spacing / 4)
+};
+
+//! The mesh's triangles split as WallSamplingParams says, all in the mesh's units.
+struct WallSampling {
+    Triangles triangles;                          //!< the split mesh: the input's vertices, then the midpoints
+    std::vector<std::array<int32_t, 2>> midpoints; //!< vertex #V + k is the midpoint of vertices midpoints[k]
+    std::vector<int32_t> parent;                   //!< per triangle, the input triangle it lies in
+                                                   //!< (triangles and parent empty when nothing is split)
+    Eigen::VectorXd thickness;                     //!< per vertex of the split mesh, as wall_thickness
+};
+
+//! The thickness of wall_thickness(mesh, tree, reach), sampled finely enough for the lifting
+//! of thin_wall_lifting (see WallSamplingParams). Where no triangle needs splitting, nothing is
+//! copied (midpoints, triangles, parent empty) and `thickness` is exactly wall_thickness's.
+//! Parallel (OpenMP).
+WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const WallSamplingParams& params);
+
+//! Rows of `values` (#V by any) followed by one row per midpoint, the mean of its two ends':
+//! a per-vertex field linearly interpolated onto the vertices sample_wall_thickness added.
+template <typename Matrix>
+Matrix with_midpoints(const Matrix& values, const std::vector<std::array<int32_t, 2>>& midpoints) {
+    const Eigen::Index n = values.rows();
+    Matrix out(n + static_cast<Eigen::Index>(midpoints.size()), values.cols());
+    out.topRows(n) = values;
+    for (size_t k = 0; k < midpoints.size(); ++k)
+        out.row(n + static_cast<Eigen::Index>(k)) = 0.5 * (out.row(midpoints[k][0]) + out.row(midpoints[k][1]));
+    return out;
+}
+
 //! The thickness sqrt(spacing^2 - 4 nu^2) (0 if spacing <= 2 nu) from which nu alone keeps a
 //! wall's sides a spacing apart: the reach wall_thickness() needs, no wall being thinner when it
 //! is 0 (the bunny at 50k vertices: spacing 0.008, 2 nu 0.02).
 double wall_reach(double nu, double spacing);
+
+//! The lifting scale for one thickness t, as thin_wall_lifting.
+double wall_lifting(double t, double nu, double spacing);
 
 //! The lifting scale per vertex, max(nu, 1/2 sqrt(spacing^2 - t^2)) for thickness t (see
 //! above), exactly nu from wall_reach(nu, spacing) on. All in unit-ball units; nu >= 0,
