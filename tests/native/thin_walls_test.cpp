@@ -1,4 +1,5 @@
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 #include "liftremesh/mesh_io.h"
 #include "liftremesh/thin_walls.h"
@@ -245,4 +246,20 @@ TEST(WallSampling, LeavesAMeshWhoseVerticesSeeItsWallsAsItIs) {
     EXPECT_EQ(s.triangles.rows(), 0); // nothing copied: the slab's own
     EXPECT_TRUE(s.parent.empty());
     EXPECT_EQ(s.thickness, wall_thickness(slab, tree, params.reach));
+}
+
+// No split could end (min_edge 0) or none would mean anything: refused.
+TEST(WallSampling, RejectsBadParameters) {
+    const Mesh sheets = test::make_offset_sheets(0.05);
+    const AabbTree tree(sheets);
+    WallSamplingParams p = sheet_sampling(0.2);
+    p.min_edge = 0.0;
+    EXPECT_THROW(sample_wall_thickness(sheets, tree, p), InvalidInput);
+    p = sheet_sampling(0.2);
+    p.spacing = std::nan("");
+    EXPECT_THROW(sample_wall_thickness(sheets, tree, p), InvalidInput);
+    p = sheet_sampling(0.2);
+    p.tolerance = -0.1;
+    EXPECT_THROW(sample_wall_thickness(sheets, tree, p), InvalidInput);
+    EXPECT_NO_THROW(sample_wall_thickness(sheets, tree, sheet_sampling(0.2)));
 }

@@ -1,6 +1,7 @@
 #include "liftremesh/thin_walls.h"
 
 #include "liftremesh/compressed_rows.h"
+#include "liftremesh/exceptions.h"
 
 #include <algorithm>
 #include <functional>
@@ -134,6 +135,11 @@ void split_at_midpoints(const Points& points, const std::unordered_map<std::uint
 } // namespace
 
 WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const WallSamplingParams& params) {
+    const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(params.spacing) || !positive(params.min_edge) || !(params.reach >= 0.0) || !(params.nu >= 0.0) ||
+        !(params.tolerance >= 0.0) || !std::isfinite(params.tolerance))
+        throw InvalidInput("sample_wall_thickness: the spacing and the shortest edge split must be positive and "
+                           "finite, the reach, nu and the tolerance not negative");
     WallSampling result;
     result.thickness = wall_thickness(mesh, tree, params.reach);
     Mesh split;                  // the mesh split so far, copied at the first split

@@ -66,7 +66,8 @@ struct WallSampling {
 //! The thickness of wall_thickness(mesh, tree, reach), sampled finely enough for the lifting
 //! of thin_wall_lifting (see WallSamplingParams). Where no triangle needs splitting, nothing is
 //! copied (midpoints, triangles, parent empty) and `thickness` is exactly wall_thickness's.
-//! Parallel (OpenMP).
+//! Parallel (OpenMP). Throws InvalidInput unless spacing and min_edge are positive and finite
+//! and reach, nu and tolerance not negative.
 WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const WallSamplingParams& params);
 
 //! Rows of `values` (#V by any) followed by one row per midpoint, the mean of its two ends':
