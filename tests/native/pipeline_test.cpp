@@ -278,6 +278,32 @@ TEST(Remesh, AClosedPartThinnerThanItsCellsKeepsItsTriangles) {
     EXPECT_GE(measure_quality(sphere_out).kappa_min, 0.5);
 }
 
+// The optimiser's progress over several pieces is one run, each piece the same share: it never
+// steps back, not even while a piece is remeshed again (it restarted within its share before),
+// and it stays within the total. A ring 0.2 across, of tube 0.005, beside a sphere, at 1000
+// vertices: its share (37 sites) fails and is tried again with twice as many (remesh_one_of_many).
+TEST(Remesh, ProgressOverPiecesNeverStepsBack) {
+    Mesh ring = test::make_torus(0.1, 0.005, 48, 8);
+    ring.points.col(0).array() += 3.0;
+    int last = -1, total = 0;
+    long calls = 0;
+    bool stepped_back = false;
+    const ProgressCallback progress = [&](const Progress& p) {
+        if (p.stage != "optimize" || p.total == 0) return true;
+        stepped_back |= p.iteration < last;
+        EXPECT_LE(p.iteration, p.total);
+        last = p.iteration;
+        total = p.total;
+        ++calls;
+        return true;
+    };
+    const RemeshResult r = remesh(test::joined(test::make_icosphere(3), ring), params_with(1000), progress);
+    EXPECT_EQ(r.report.parts, 2);
+    EXPECT_FALSE(stepped_back);
+    EXPECT_EQ(total, 2 * RemeshParams{}.iterations);
+    EXPECT_GT(calls, total); // more runs than pieces: the ring was remeshed again
+}
+
 // The acceptance criteria of the core on real CAD STL exports (../shared/meshes), at 6000
 // vertices with the default settings.
 namespace {

@@ -400,18 +400,20 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     Mesh& out = result.mesh;
     long retry_sites = sites_wanted; // remesh_one_of_many's retries: at most one more run's worth
+    int furthest = 0;                // the optimiser's progress shown so far, over all pieces
     for (size_t k = 0; k < pieces.size(); ++k) {
         Piece& piece = pieces[k];
         if (pieces.size() == 1) {
             out = remesh_piece(piece, params.seed, params, to_unit, spacing, clock, progress, report);
             break;
         }
-        // The optimiser's progress as one run over all pieces, each the same share.
+        // The optimiser's progress as one run over all pieces, each the same share; a piece
+        // remeshed again (remesh_one_of_many) holds the bar where it was rather than take it back.
         const ProgressCallback piece_progress =
-            progress ? ProgressCallback([&progress, k, n = static_cast<int>(pieces.size())](const Progress& p) {
+            progress ? ProgressCallback([&progress, &furthest, k, n = static_cast<int>(pieces.size())](const Progress& p) {
                 Progress all = p;
                 if (all.total > 0) {
-                    all.iteration += static_cast<int>(k) * all.total;
+                    all.iteration = furthest = std::max(furthest, all.iteration + static_cast<int>(k) * all.total);
                     all.total *= n;
                 }
                 return progress(all);
