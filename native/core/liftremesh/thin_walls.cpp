@@ -4,11 +4,12 @@
 #include "liftremesh/exceptions.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <numeric>
 #include <unordered_map>
-#include <cmath>
-#include <limits>
 #include <vector>
 
 namespace liftremesh {
