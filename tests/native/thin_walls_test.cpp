@@ -143,6 +143,7 @@ WallSamplingParams sheet_sampling(double spacing) {
     p.reach = wall_reach(p.nu, spacing);
     p.tolerance = 0.1 * spacing;
     p.min_edge = 0.25 * spacing;
+    p.max_midpoints = 1000;
     return p;
 }
 
@@ -261,5 +262,31 @@ TEST(WallSampling, RejectsBadParameters) {
     p = sheet_sampling(0.2);
     p.tolerance = -0.1;
     EXPECT_THROW(sample_wall_thickness(sheets, tree, p), InvalidInput);
+    p = sheet_sampling(0.2);
+    p.max_midpoints = -1;
+    EXPECT_THROW(sample_wall_thickness(sheets, tree, p), InvalidInput);
     EXPECT_NO_THROW(sample_wall_thickness(sheets, tree, sheet_sampling(0.2)));
+}
+
+// The midpoints are bounded (the memory with them): a round that would add more than
+// max_midpoints in all is not made, and what it leaves is still a conforming split.
+TEST(WallSampling, AddsNoMoreThanMaxMidpoints) {
+    const Mesh sheets = test::make_offset_sheets(0.05);
+    const AabbTree tree(sheets);
+    const size_t all = sample_wall_thickness(sheets, tree, sheet_sampling(0.2)).midpoints.size();
+    ASSERT_GT(all, 20u);
+    WallSamplingParams p = sheet_sampling(0.2);
+    p.max_midpoints = static_cast<long>(all) - 1;
+    const WallSampling capped = sample_wall_thickness(sheets, tree, p);
+    EXPECT_LT(capped.midpoints.size(), all);
+    EXPECT_EQ(capped.thickness.size(), static_cast<Eigen::Index>(8 + capped.midpoints.size()));
+    double boundary = 0.0;
+    const Points points = with_midpoints(sheets.points, capped.midpoints);
+    for (const EdgeCount& e : edge_counts(capped.triangles)) {
+        EXPECT_LE(e.count, 2);
+        if (e.count == 1) boundary += (points.row(e.a) - points.row(e.b)).norm();
+    }
+    EXPECT_NEAR(boundary, 8.0 + 4.0 * std::sqrt(2.0) * 1.2, 1e-12); // the square's and the diamond's rims
+    p.max_midpoints = 0;
+    EXPECT_TRUE(sample_wall_thickness(sheets, tree, p).midpoints.empty());
 }

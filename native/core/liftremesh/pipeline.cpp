@@ -133,7 +133,8 @@ struct Piece {
 
 // Vertex normals, densities and the lifted surface of a piece (Section 5.2.1, Eqs. 12, 22-24), from
 // its own triangles only: a solid's normals and walls are its own, however near another one lies.
-void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing) {
+void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing,
+                long sites_wanted) {
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
     const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
@@ -150,6 +151,7 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
         walls.spacing = spacing * to_unit.scale;
         walls.tolerance = 0.1 * walls.spacing;
         walls.min_edge = 0.25 * walls.spacing;
+        walls.max_midpoints = 2 * sites_wanted;
         const WallSampling sampled = sample_wall_thickness(input, *piece.tree, walls);
         const Eigen::VectorXd lifting = thin_wall_lifting(sampled.thickness / to_unit.scale, params.nu, spacing);
         if (sampled.midpoints.empty()) {
@@ -387,7 +389,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
 
     for (Piece& piece : pieces) {
         clock.begin("normals");
-        lift_piece(piece, params, to_unit, spacing);
+        lift_piece(piece, params, to_unit, spacing, sites_wanted);
         clock.end();
     }
     share_sites(pieces, sites_wanted);

@@ -138,9 +138,9 @@ void split_at_midpoints(const Points& points, const std::unordered_map<std::uint
 WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const WallSamplingParams& params) {
     const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     if (!positive(params.spacing) || !positive(params.min_edge) || !(params.reach >= 0.0) || !(params.nu >= 0.0) ||
-        !(params.tolerance >= 0.0) || !std::isfinite(params.tolerance))
+        !(params.tolerance >= 0.0) || !std::isfinite(params.tolerance) || params.max_midpoints < 0)
         throw InvalidInput("sample_wall_thickness: the spacing and the shortest edge split must be positive and "
-                           "finite, the reach, nu and the tolerance not negative");
+                           "finite, the reach, nu, the tolerance and the most midpoints not negative");
     WallSampling result;
     result.thickness = wall_thickness(mesh, tree, params.reach);
     Mesh split;                  // the mesh split so far, copied at the first split
@@ -212,7 +212,8 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
         for (size_t f = 0; f < centroid_needs.size(); ++f)
             if (centroid_needs[f]) marked[longest_of[f]] = 1;
 
-        if (std::find(marked.begin(), marked.end(), 1) == marked.end()) break;
+        const long wanted = static_cast<long>(std::count(marked.begin(), marked.end(), 1));
+        if (wanted == 0 || static_cast<long>(result.midpoints.size()) + wanted > params.max_midpoints) break;
         if (current == &mesh) { // the first split: the copy it changes
             split = mesh;
             current = &split;

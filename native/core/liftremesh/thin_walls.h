@@ -52,6 +52,8 @@ struct WallSamplingParams {
     double spacing = 0.0;   //!< the sites' spacing, as thin_wall_lifting
     double tolerance = 0.0; //!< the lifting an interpolation may miss by (0.1 spacing)
     double min_edge = 0.0;  //!< edges no longer than this are not split (spacing / 4)
+    long max_midpoints = 0; //!< no more vertices than this are added (twice the sites asked
+                            //!< for): a bound on the memory, whatever the input
 };
 
 //! The mesh's triangles split as WallSamplingParams says, all in the mesh's units.
@@ -67,7 +69,7 @@ struct WallSampling {
 //! of thin_wall_lifting (see WallSamplingParams). Where no triangle needs splitting, nothing is
 //! copied (midpoints, triangles, parent empty) and `thickness` is exactly wall_thickness's.
 //! Parallel (OpenMP). Throws InvalidInput unless spacing and min_edge are positive and finite
-//! and reach, nu and tolerance not negative.
+//! and reach, nu, tolerance and max_midpoints not negative.
 WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const WallSamplingParams& params);
 
 //! Rows of `values` (#V by any) followed by one row per midpoint, the mean of its two ends':
