@@ -133,8 +133,9 @@ struct Piece {
 
 // Vertex normals, densities and the lifted surface of a piece (Section 5.2.1, Eqs. 12, 22-24), from
 // its own triangles only: a solid's normals and walls are its own, however near another one lies.
+// `midpoints_left`: what the thin walls' sampling may still add, over all pieces (decreased).
 void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing,
-                long sites_wanted) {
+                long& midpoints_left) {
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
     const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
@@ -151,8 +152,9 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
         walls.spacing = spacing * to_unit.scale;
         walls.tolerance = 0.1 * walls.spacing;
         walls.min_edge = 0.25 * walls.spacing;
-        walls.max_midpoints = 2 * sites_wanted;
+        walls.max_midpoints = midpoints_left;
         const WallSampling sampled = sample_wall_thickness(input, *piece.tree, walls);
+        midpoints_left -= static_cast<long>(sampled.midpoints.size());
         const Eigen::VectorXd lifting = thin_wall_lifting(sampled.thickness / to_unit.scale, params.nu, spacing);
         if (sampled.midpoints.empty()) {
             piece.surface = make_lifted_surface(lift(unit.points, normals, lifting), unit.triangles, weights);
@@ -387,9 +389,10 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     report.parts = static_cast<long>(pieces.size());
     clock.end();
 
+    long midpoints_left = 2 * sites_wanted; // the thin walls' sampling, over all pieces
     for (Piece& piece : pieces) {
         clock.begin("normals");
-        lift_piece(piece, params, to_unit, spacing, sites_wanted);
+        lift_piece(piece, params, to_unit, spacing, midpoints_left);
         clock.end();
     }
     share_sites(pieces, sites_wanted);
