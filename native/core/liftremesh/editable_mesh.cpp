@@ -127,6 +127,24 @@ int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
     return m;
 }
 
+CompressedRows EditableMesh::fans() const {
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    pairs.reserve(3 * tris.size());
+    for (size_t t = 0; t < tris.size(); ++t)
+        for (int32_t v : tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
+    return compress_rows(static_cast<long>(points.size()), pairs);
+}
+
+std::vector<char> EditableMesh::border_points() const {
+    std::vector<char> border(points.size(), 0);
+    for (const auto& [key, use] : edge_uses())
+        if (use.size() != 2) {
+            const Tri& t = tris[use[0].tri];
+            border[t[use[0].j]] = border[t[(use[0].j + 1) % 3]] = 1;
+        }
+    return border;
+}
+
 Mesh EditableMesh::to_mesh() const { return make_mesh(points, tris); }
 
 void EditableMesh::write_to(Mesh& mesh, Eigen::Index first) const {

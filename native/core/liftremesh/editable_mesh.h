@@ -4,6 +4,7 @@
 // plain vectors; edges are found through edge_uses(), made again after a batch of edits.
 #pragma once
 
+#include "liftremesh/compressed_rows.h"
 #include "liftremesh/mesh.h"
 
 #include <array>
@@ -52,6 +53,10 @@ public:
     //! The quad of an edge with exactly two uses in opposite directions, the first use's
     //! triangle as t1; none otherwise (boundary, non-manifold or misoriented edge).
     std::optional<Quad> quad_of(const Uses& uses) const;
+    //! Each point's triangles (its fan), in triangle order.
+    CompressedRows fans() const;
+    //! A flag per point: an end of an edge without exactly two triangles.
+    std::vector<char> border_points() const;
 
     //! Normal of a triangle, of length twice its area (zero if degenerate).
     Eigen::Vector3d normal(const Tri& t) const;

@@ -40,17 +40,7 @@ public:
     // The fans and the border, made once: moving vertices does not change the triangles.
     Relaxation(EditableMesh& mesh, const AabbTree& input, const QualityPolishParams& params)
         : mesh_(mesh), input_(input), params_(params), cos_flat_(std::cos(params.flat_angle_deg * M_PI / 180.0)),
-          on_border_(mesh.points.size(), 0) {
-        std::vector<std::pair<int32_t, int32_t>> pairs;
-        for (size_t t = 0; t < mesh_.tris.size(); ++t)
-            for (int32_t v : mesh_.tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
-        fans_ = compress_rows(static_cast<long>(mesh_.points.size()), pairs);
-        for (const auto& [key, use] : mesh_.edge_uses())
-            if (use.size() != 2) {
-                const EditableMesh::Tri& t = mesh_.tris[use[0].tri];
-                on_border_[t[use[0].j]] = on_border_[t[(use[0].j + 1) % 3]] = 1;
-            }
-    }
+          on_border_(mesh.border_points()), fans_(mesh.fans()) {}
 
     // One pass over the vertices of the bad triangles, in index order; flags the moved ones.
     long pass(std::vector<char>& moved) {
