@@ -1,5 +1,5 @@
-// Untangling: flips that take triangles out of each other, and only where they keep the surface
-// on the input.
+// Untangling: flips, then vertex moves, that take triangles out of each other, and only where they
+// keep the surface on the input.
 #include "helpers.h"
 #include "liftremesh/aabb_tree.h"
 #include "liftremesh/exceptions.h"
@@ -93,7 +93,43 @@ TEST(Untangle, LeavesAMeshWithoutCrossingsOrWithoutAFlipThatHelpsAsItIs) {
     ASSERT_EQ(crossings(pair).size(), 1u);
     const UntangleStats stats = untangle(pair, AabbTree(pair), crossings(pair), with_tolerance(0.01));
     EXPECT_EQ(stats.flipped, 0);
+    EXPECT_EQ(stats.moved, 0); // their corners end edges of one triangle: on a border, never moved
     EXPECT_EQ(stats.crossings.size(), 1u);
+}
+
+TEST(Untangle, AVertexPushedThroughTheOtherSideIsMovedBackOntoTheInput) {
+    // A sphere with one vertex pushed through its centre to 0.3 beyond the far side: its fan
+    // passes through the far side, which flips cannot undo (they only lessen it). The vertex
+    // goes back onto the input, near the centroid of its neighbours; no other vertex moves.
+    const Mesh input = test::make_icosphere(3);
+    Mesh m = input;
+    const Eigen::Index v = 0;
+    const Eigen::Vector3d p = m.points.row(v);
+    m.points.row(v) = -1.3 * p;
+    ASSERT_FALSE(crossings(m).empty());
+    const UntangleStats stats = untangle(m, AabbTree(input), crossings(m), with_tolerance(0.01));
+    EXPECT_EQ(stats.moved, 1);
+    EXPECT_TRUE(stats.crossings.empty());
+    EXPECT_TRUE(crossings(m).empty());
+    const Eigen::Vector3d back = m.points.row(v);
+    EXPECT_NEAR(back.norm(), 1.0, 0.01);   // on the input (the sphere's flat facets)
+    EXPECT_LT((back - p).norm(), 0.1);     // among its neighbours again (edges of about 0.16)
+    EXPECT_EQ(euler_characteristic(m), 2); // flips keep the topology
+    for (Eigen::Index w = 1; w < m.points.rows(); ++w) EXPECT_EQ(m.points.row(w), input.points.row(w)) << w;
+}
+
+TEST(Untangle, NoMoveMakesATriangleFaceAgainstTheInput) {
+    // The same vertex pushed through, with an input that is the sphere turned inside out: the
+    // move back would leave the vertex's fan facing against it, so the crossings stay.
+    Mesh input = test::make_icosphere(3);
+    input.triangles.col(1).swap(input.triangles.col(2));
+    Mesh m = test::make_icosphere(3);
+    m.points.row(0) *= -1.3;
+    const Mesh pushed = m;
+    const UntangleStats stats = untangle(m, AabbTree(input), crossings(m), with_tolerance(0.01));
+    EXPECT_EQ(stats.moved, 0);
+    EXPECT_FALSE(stats.crossings.empty());
+    EXPECT_EQ(m.points, pushed.points);
 }
 
 TEST(Untangle, RefusesABadTolerance) {

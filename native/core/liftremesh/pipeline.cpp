@@ -446,6 +446,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         untangling.tolerance = repair_tolerance(spacing, to_unit);
         UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling);
         report.edges_flipped += untangled.flipped;
+        report.vertices_moved += untangled.moved;
         crossings = std::move(untangled.crossings);
         output_tree = AabbTree(out);
     }

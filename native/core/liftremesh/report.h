@@ -37,7 +37,8 @@ struct RemeshReport {
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
     long edges_flipped = 0;              //!< edges flipped at the end: for quality (quality_polish.h), onto knife
                                          //!< edges (crease_snap.h), out of crossings (untangle.h)
-    long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h) and for triangle quality at the end (quality_polish.h)
+    long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h), for triangle quality
+                                         //!< at the end (quality_polish.h), out of crossings (untangle.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     std::vector<StageTime> timings;
     //! What a user should know about a result that is not a faithful copy of its input, as
