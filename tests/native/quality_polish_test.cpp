@@ -1,6 +1,7 @@
 // The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
-// a sharp crease of the input is not; a vertex pushed out of place on a flat part is moved back,
+// a sharp crease of the input is not; a cap on a crease is flipped, one on the rim of a thin plate
+// and a triangle short of a cap are not; a vertex pushed out of place on a flat part is moved back,
 // one on a crease is not; a closed surface keeps its topology, its orientation and its worst
 // triangle at least as good.
 #include "liftremesh/exceptions.h"
@@ -112,6 +113,69 @@ TEST(QualityPolish, ASharpCreaseOfTheInputIsNoFold) {
     const QualityPolishStats stats = polish_quality(m, input, with_tolerance(1e3));
     EXPECT_EQ(stats.unfolded, 0);
     EXPECT_EQ(stats.flipped, 0);
+    EXPECT_TRUE(has_edge(m, 0, 1));
+}
+
+namespace {
+// An input with a right-angled crease along the x axis: face A, z = 0 and y in [0, 1], facing +z;
+// face B, y = 0 and z in [-1, 0], facing -y.
+Mesh right_crease() {
+    return test::make_mesh({{-1.5, 0, 0}, {1.5, 0, 0}, {1.5, 1, 0}, {-1.5, 1, 0}, {1.5, 0, -1}, {-1.5, 0, -1}},
+                           {{0, 1, 2}, {0, 2, 3}, {1, 0, 5}, {1, 5, 4}});
+}
+// On it, the crease edge a = (-1, 0, 0), b = (1, 0, 0), with the triangle (a, b, c) on face A,
+// c = (0, off, 0), and (b, a, d) on face B, d = (0, 0, -0.8); beyond c on face A, (a, c, e) and
+// (c, b, e), e = (0, 0.8, 0).
+Mesh crease_pair(double off) {
+    return test::make_mesh({{-1, 0, 0}, {1, 0, 0}, {0, off, 0}, {0, 0, -0.8}, {0, 0.8, 0}},
+                           {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}, {2, 1, 4}});
+}
+} // namespace
+
+TEST(QualityPolish, ACapOnACreaseIsFlippedAndTheCreaseRunsThroughItsApex) {
+    // c 0.05 off the crease: an angle of 174 degrees at c, kappa 0.09.
+    Mesh m = crease_pair(0.05);
+    const AabbTree input(right_crease());
+    ASSERT_LT(test::min_kappa(m), 0.1);
+    ASSERT_NEAR(measure_quality(m).sharp_edge_length, 2.0, 1e-12); // a-b
+    Mesh strict = m; // c lies 0.05 off face B: beyond a tolerance of 0.01, the flip is not made
+    polish_quality(strict, input, with_tolerance(0.01));
+    EXPECT_TRUE(has_edge(strict, 0, 1));
+    EXPECT_GE(flips(m, input, 0.1), 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    EXPECT_GT(test::min_kappa(m), 0.4);
+    for (Eigen::Index f : {0, 1}) // on face B now
+        EXPECT_GT((corner(m, f, 1) - corner(m, f, 0)).cross(corner(m, f, 2) - corner(m, f, 0)).normalized().dot(
+                      Eigen::Vector3d(0, -1, 0)), 0.99);
+    // The crease runs a-c-b: 0.1% longer than a-b.
+    EXPECT_NEAR(measure_quality(m).sharp_edge_length, 2.0 * std::sqrt(1.0 + 0.05 * 0.05), 1e-9);
+}
+
+TEST(QualityPolish, ACapOnTheRimOfAThinPlateIsKept) {
+    // A plate 0.05 thick (y < 0, z in [-0.05, 0]) and its rim face y = 0, facing +y; the cap
+    // (a, b, c) stands on the rim, c = (0, 0, -0.05); (b, a, d) on the top, (a, c, e) and (c, b, e)
+    // on the bottom. Flipped, the two new triangles would lie on the top within 0.1 and be far
+    // better, but would turn by 176 degrees from the bottom ones: the plate folded onto itself.
+    const Mesh input = test::make_mesh({{-1.5, 0, 0}, {1.5, 0, 0}, {1.5, -1, 0}, {-1.5, -1, 0}, {-1.5, 0, -0.05},
+                                        {1.5, 0, -0.05}, {1.5, -1, -0.05}, {-1.5, -1, -0.05}},
+                                       {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {4, 5, 6}, {4, 6, 7}});
+    Mesh m = test::make_mesh({{-1, 0, 0}, {1, 0, 0}, {0, 0, -0.05}, {0, -0.8, 0}, {0, -0.8, -0.05}},
+                             {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}, {2, 1, 4}});
+    const AabbTree tree(input);
+    EditableMesh editable(m);
+    const auto quad = editable.quad_of(editable.edge_uses().at(edge_key(0, 1)));
+    ASSERT_TRUE(quad.has_value());
+    ASSERT_TRUE(cap_flip_fits_input(editable, *quad, tree, 0.1)); // on its own, the flip would do
+    polish_quality(m, tree, with_tolerance(0.1));
+    EXPECT_TRUE(has_edge(m, 0, 1));
+}
+
+TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {
+    // c 0.3 off the crease: 147 degrees at c.
+    Mesh m = crease_pair(0.3);
+    const AabbTree input(right_crease());
+    polish_quality(m, input, with_tolerance(0.5));
     EXPECT_TRUE(has_edge(m, 0, 1));
 }
 

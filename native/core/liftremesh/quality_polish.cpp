@@ -35,6 +35,48 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
     return total;
 }
 
+// The caps' pass (see the header), over the edges opposite an angle of 150 degrees or more:
+// one is flipped when cap_flip_fits_input allows it and neither new triangle turns by more than
+// 120 degrees from the cap's neighbour it now borders (else the cap stood for a face narrower
+// than the edge length, the rim of a thin plate). Returns the flips.
+long flip_caps(EditableMesh& mesh, const AabbTree& input, double tolerance) {
+    const auto uses = mesh.edge_uses();
+    const double cos_cap = -std::sqrt(3.0) / 2.0; // 150 degrees
+    std::vector<uint64_t> keys;
+    for (const EditableMesh::Tri& t : mesh.tris)
+        for (int j = 0; j < 3; ++j) {
+            const Eigen::Vector3d u = mesh.points[t[(j + 1) % 3]] - mesh.points[t[j]];
+            const Eigen::Vector3d v = mesh.points[t[(j + 2) % 3]] - mesh.points[t[j]];
+            if (u.dot(v) <= cos_cap * u.norm() * v.norm()) keys.push_back(edge_key(t[(j + 1) % 3], t[(j + 2) % 3]));
+        }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](uint64_t k) { return uses.at(k).size() != 2; }), keys.end());
+    std::vector<char> flipped;
+    const double cos_fold = -0.5; // 120 degrees
+    auto accept = [&](const EditableMesh::Quad& q) {
+        if (!cap_flip_fits_input(mesh, q, input, tolerance)) return false;
+        const auto [n1, n2] = EditableMesh::flipped(q);
+        // The cap's other two edges: each now borders n1 or n2, across from the cap's neighbour.
+        for (const EditableMesh::Tri* n : {&n1, &n2})
+            for (int j = 0; j < 3; ++j) {
+                const int32_t u = (*n)[j], w = (*n)[(j + 1) % 3];
+                if (edge_key(u, w) == edge_key(q.c, q.d)) continue;
+                const auto found = uses.find(edge_key(u, w));
+                if (found == uses.end()) continue;
+                for (int k = 0; k < static_cast<int>(found->second.size()) && k < 2; ++k) {
+                    const int other = found->second[k].tri;
+                    if (other == q.t1 || other == q.t2) continue;
+                    if (flipped[static_cast<size_t>(other)]) return false; // changed in this pass: weighed in the next
+                    const Eigen::Vector3d a = mesh.normal(*n), b = mesh.normal(mesh.tris[static_cast<size_t>(other)]);
+                    if (!(a.dot(b) > cos_fold * a.norm() * b.norm())) return false;
+                }
+            }
+        return true;
+    };
+    return mesh.flip_pass(uses, keys, {}, accept, flipped);
+}
+
 class Relaxation {
 public:
     // The fans and the border, made once: moving vertices does not change the triangles.
@@ -184,6 +226,23 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
     return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
 }
 
+bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                         double tolerance) {
+    const std::vector<Eigen::Vector3d>& x = mesh.points;
+    // The cosine of the angle at `apex` of the triangle it makes with the quad's edge a-b.
+    auto cos_at = [&](int32_t apex) {
+        const Eigen::Vector3d u = x[quad.a] - x[apex], v = x[quad.b] - x[apex];
+        return u.dot(v) / (u.norm() * v.norm());
+    };
+    const double cos_cap = -std::sqrt(3.0) / 2.0; // 150 degrees
+    if ((cos_at(quad.c) <= cos_cap) == (cos_at(quad.d) <= cos_cap)) return false; // one cap on the edge, not two
+    const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
+    const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
+    const auto [n1, n2] = EditableMesh::flipped(quad);
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) > std::min(mesh.kappa(t1), mesh.kappa(t2)))) return false;
+    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+}
+
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                                 double tolerance) {
     if (!mesh.flip_improves_quality(quad)) return false; // first: it spares the two distance queries
@@ -203,7 +262,8 @@ QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const Quali
         throw InvalidInput("polish_quality: the tolerance must be positive and finite, the passes not negative");
     EditableMesh editable(mesh);
     QualityPolishStats stats;
-    stats.flipped = flip_passes(editable, input, params.tolerance, params.flip_passes,
+    stats.flipped = flip_caps(editable, input, params.tolerance);
+    stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes,
                                 std::vector<char>(editable.tris.size(), 1), stats.unfolded);
     std::vector<char> moved(editable.points.size(), 0);
     Relaxation relaxation(editable, input, params);

@@ -10,6 +10,14 @@
 //   the edge length, folded 157 degrees onto its neighbour, 0.74 from the input) is flipped when
 //   both new triangles lie on it (fold_flip_fits_input); a crease of the input, followed, is
 //   near it and left alone;
+// - caps, first: a triangle with an angle of 150 degrees or more, its apex near the opposite edge
+//   (three vertices along a crease joined across it: FreeCAD's inductor RLF_7030, seed 3, kappa
+//   0.009 at a corner of its top), has that edge flipped when both new triangles lie on the input
+//   (as for folds), are better than the worse old one, and neither turns by more than 120 degrees
+//   from the cap's neighbour it then borders. The crease then runs through the apex. The cap's
+//   normal, near zero, is not weighed, as the flips below would. A cap on the rim of a plate
+//   thinner than the edge length (SOT404: 0.01 mm at edges of 0.04 mm, kappa 0.09) stands for
+//   that rim and is kept: flipped, the plate would fold onto itself;
 // - flips: an edge is flipped when its quad is nearly planar and the worse kappa (Eq. 26) of its
 //   two triangles goes up (EditableMesh::flip_improves_quality: never across a sharp edge, whose
 //   triangles turn by more than 30 degrees), and the new diagonal's midpoint is no farther from
@@ -74,6 +82,13 @@ bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Qu
 //! normal within 30 degrees of the input's triangle nearest to its centroid.
 bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                           double tolerance);
+
+//! Whether flipping the quad's edge removes a cap (the rule above, but for the turn from the
+//! cap's other neighbours, which the quad does not see): one of its two triangles, not both, has
+//! an angle of 150 degrees or more opposite the edge; both new ones lie on the input (as for a
+//! fold) and their worse kappa is above the old pair's.
+bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                         double tolerance);
 
 //! Largest distance from the input of seven points of the triangle: its centroid, its edges'
 //! midpoints and the points halfway from the centroid to its corners.
