@@ -40,7 +40,6 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
 // 120 degrees from the cap's neighbour it now borders (else the cap stood for a face narrower
 // than the edge length, the rim of a thin plate). Returns the flips.
 long flip_caps(EditableMesh& mesh, const AabbTree& input, double tolerance) {
-    const auto uses = mesh.edge_uses();
     const double cos_cap = -std::sqrt(3.0) / 2.0; // 150 degrees
     std::vector<uint64_t> keys;
     for (const EditableMesh::Tri& t : mesh.tris)
@@ -49,8 +48,10 @@ long flip_caps(EditableMesh& mesh, const AabbTree& input, double tolerance) {
             const Eigen::Vector3d v = mesh.points[t[(j + 2) % 3]] - mesh.points[t[j]];
             if (u.dot(v) <= cos_cap * u.norm() * v.norm()) keys.push_back(edge_key(t[(j + 1) % 3], t[(j + 2) % 3]));
         }
+    if (keys.empty()) return 0; // the edges' uses are made only where there is a cap
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    const auto uses = mesh.edge_uses();
     keys.erase(std::remove_if(keys.begin(), keys.end(), [&](uint64_t k) { return uses.at(k).size() != 2; }), keys.end());
     std::vector<char> flipped;
     const double cos_fold = -0.5; // 120 degrees
