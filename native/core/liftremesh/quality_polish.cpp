@@ -12,6 +12,9 @@ namespace liftremesh {
 
 namespace {
 
+// The cosine of a cap's angle at its apex: 150 degrees or more.
+const double kCosCap = -std::sqrt(3.0) / 2.0;
+
 // Passes of fold and quality flips (the two rules ask for turns over 90 degrees and under 30:
 // never both), the first over the edges of the triangles flagged in `around`, each next one
 // over those of the triangles the last one changed. Returns the flips; counts the folds undone.
@@ -40,13 +43,12 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
 // 120 degrees from the cap's neighbour it now borders (else the cap stood for a face narrower
 // than the edge length, the rim of a thin plate). Returns the flips.
 long flip_caps(EditableMesh& mesh, const AabbTree& input, double tolerance) {
-    const double cos_cap = -std::sqrt(3.0) / 2.0; // 150 degrees
     std::vector<uint64_t> keys;
     for (const EditableMesh::Tri& t : mesh.tris)
         for (int j = 0; j < 3; ++j) {
             const Eigen::Vector3d u = mesh.points[t[(j + 1) % 3]] - mesh.points[t[j]];
             const Eigen::Vector3d v = mesh.points[t[(j + 2) % 3]] - mesh.points[t[j]];
-            if (u.dot(v) <= cos_cap * u.norm() * v.norm()) keys.push_back(edge_key(t[(j + 1) % 3], t[(j + 2) % 3]));
+            if (u.dot(v) <= kCosCap * u.norm() * v.norm()) keys.push_back(edge_key(t[(j + 1) % 3], t[(j + 2) % 3]));
         }
     if (keys.empty()) return 0; // the edges' uses are made only where there is a cap
     std::sort(keys.begin(), keys.end());
@@ -235,8 +237,7 @@ bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qua
         const Eigen::Vector3d u = x[quad.a] - x[apex], v = x[quad.b] - x[apex];
         return u.dot(v) / (u.norm() * v.norm());
     };
-    const double cos_cap = -std::sqrt(3.0) / 2.0; // 150 degrees
-    if ((cos_at(quad.c) <= cos_cap) == (cos_at(quad.d) <= cos_cap)) return false; // one cap on the edge, not two
+    if ((cos_at(quad.c) <= kCosCap) == (cos_at(quad.d) <= kCosCap)) return false; // one cap on the edge, not two
     const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
     const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
     const auto [n1, n2] = EditableMesh::flipped(quad);
