@@ -222,13 +222,14 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
         }
         std::unordered_map<std::uint64_t, int32_t> midpoint_of;
         const Eigen::Index first_new = split.points.rows();
+        split.points.conservativeResize(first_new + wanted, 3); // once a round, not once a midpoint
+        int32_t m = static_cast<int32_t>(first_new);
         for (size_t e = 0; e < edges.size(); ++e) {
             if (!marked[e]) continue;
-            const int32_t m = static_cast<int32_t>(split.points.rows());
             midpoint_of.emplace(edge_key(edges[e].a, edges[e].b), m);
             result.midpoints.push_back({edges[e].a, edges[e].b});
-            split.points.conservativeResize(m + 1, 3);
             split.points.row(m) = 0.5 * (split.points.row(edges[e].a) + split.points.row(edges[e].b));
+            ++m;
         }
         split_at_midpoints(split.points, midpoint_of, split.triangles, result.parent, fresh);
         // The new vertices' thickness, as wall_thickness measures it, on the input triangles they lie on.
