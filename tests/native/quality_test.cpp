@@ -175,15 +175,29 @@ TEST(Quality, SharpEdgeLengthOfCubeAndSphere) {
     for (int n : {1, 3}) {
         Mesh cube = test::make_cube(s, n);
         EXPECT_NEAR(measure_quality(cube).sharp_edge_length, 12 * 2 * s, 1e-12) << n;
-        EXPECT_NEAR(measure_quality(cube, 89.0).sharp_edge_length, 12 * 2 * s, 1e-12) << n;
-        EXPECT_EQ(measure_quality(cube, 91.0).sharp_edge_length, 0.0) << n;
+        EXPECT_NEAR(measure_quality(cube, {89.0}).sharp_edge_length, 12 * 2 * s, 1e-12) << n;
+        EXPECT_EQ(measure_quality(cube, {91.0}).sharp_edge_length, 0.0) << n;
         // The measure does not depend on a triangle's orientation.
         std::swap(cube.triangles(0, 1), cube.triangles(0, 2));
         EXPECT_NEAR(measure_quality(cube).sharp_edge_length, 12 * 2 * s, 1e-12) << n;
     }
     const Mesh sphere = test::make_icosphere(3);
-    EXPECT_EQ(measure_quality(sphere, 60.0).sharp_edge_length, 0.0);
-    EXPECT_NEAR(measure_quality(sphere, 0.5).sharp_edge_length, total_edge_length(sphere), 1e-9);
+    EXPECT_EQ(measure_quality(sphere, {60.0}).sharp_edge_length, 0.0);
+    EXPECT_NEAR(measure_quality(sphere, {0.5}).sharp_edge_length, total_edge_length(sphere), 1e-9);
+}
+
+// A plate 1 x 1 x 0.01: its rims (8 edges of 1) and its corners (4 of 0.01) all border a side
+// triangle 0.01 wide (its altitude over the diagonal: 0.01 / sqrt(1.0001)), so a width under
+// that counts them all and one over it none, whatever their angle.
+TEST(Quality, SharpEdgesOfTrianglesNarrowerThanTheWidthDoNotCount) {
+    const Mesh plate = test::make_box({0.0, 0.0, 0.0}, {1.0, 1.0, 0.01}, 1);
+    const double side_width = 0.01 / std::sqrt(1.0001);
+    EXPECT_NEAR(measure_quality(plate).sharp_edge_length, 8.04, 1e-12);
+    EXPECT_NEAR(measure_quality(plate, {60.0, 0.999 * side_width}).sharp_edge_length, 8.04, 1e-12);
+    EXPECT_EQ(measure_quality(plate, {60.0, 1.001 * side_width}).sharp_edge_length, 0.0);
+    // A cube's faces are wide: the same width leaves its 12 edges counted.
+    EXPECT_NEAR(measure_quality(test::make_box({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 1), {60.0, 0.02}).sharp_edge_length,
+                12.0, 1e-12);
 }
 
 TEST(Quality, EmptyMeshAndBadIndices) {

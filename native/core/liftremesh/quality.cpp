@@ -55,8 +55,17 @@ double normal_angle_deg(const Mesh& mesh, int32_t s, int32_t t) {
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / M_PI;
 }
 
+//! Whether triangle f is at least `width` wide: its smallest altitude, twice its area over its
+//! longest edge (for width 0, every triangle).
+bool at_least_as_wide(const Mesh& mesh, Eigen::Index f, double width) {
+    if (!(width > 0.0)) return true;
+    const Eigen::Vector3d a = corner(mesh, f, 0), b = corner(mesh, f, 1), c = corner(mesh, f, 2);
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return (b - a).cross(c - a).norm() >= width * longest;
+}
+
 //! Returns the number of distinct edges.
-long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
+long measure_edges(const Mesh& mesh, const SharpEdgeCriterion& sharp, MeshQuality& q) {
     const EdgeUses edges = edge_uses(mesh.triangles);
     std::vector<std::pair<int, int>> boundary;
     for (long e = 0; e < edges.size(); ++e) {
@@ -66,7 +75,8 @@ long measure_edges(const Mesh& mesh, double sharp_angle_deg, MeshQuality& q) {
         if (count >= 3) ++q.nonmanifold_edges;
         if (count == 2) {
             if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) q.oriented = false;
-            if (normal_angle_deg(mesh, use[0], use[1]) > sharp_angle_deg)
+            if (normal_angle_deg(mesh, use[0], use[1]) > sharp.angle_deg &&
+                at_least_as_wide(mesh, use[0] / 3, sharp.min_width) && at_least_as_wide(mesh, use[1] / 3, sharp.min_width))
                 q.sharp_edge_length += (mesh.points.row(edges.a[e]) - mesh.points.row(edges.b[e])).norm();
         }
     }
@@ -195,13 +205,13 @@ std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, con
 
 } // namespace
 
-MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg) {
+MeshQuality measure_quality(const Mesh& mesh, const SharpEdgeCriterion& sharp) {
     check_indices(mesh, "measured mesh");
     MeshQuality q;
     const std::vector<char> used = referenced_vertices(mesh);
     q.vertices = static_cast<long>(std::count(used.begin(), used.end(), 1));
     measure_triangles(mesh, q);
-    const long edges = measure_edges(mesh, sharp_angle_deg, q);
+    const long edges = measure_edges(mesh, sharp, q);
     measure_vertices(mesh, q);
     // euler_characteristic(mesh), from the counts at hand instead of a second sort of the edges.
     q.euler_characteristic = static_cast<int>(q.vertices - edges + q.triangles);

@@ -28,20 +28,31 @@ struct MeshQuality {
     long extra_vertex_fans = 0;
     bool oriented = true;                  //!< every manifold edge is used once in each direction
     int euler_characteristic = 0;          //!< V - E + F
-    double sharp_edge_length = 0.0;        //!< total length of edges with dihedral angle > sharp_angle
+    double sharp_edge_length = 0.0;        //!< total length of the edges SharpEdgeCriterion counts
     //! Pairs of triangles passing through each other (count_self_intersections, which needs an
     //! AABB tree: measure_quality leaves 0 here, the pipeline counts them for input and output).
     long self_intersections = 0;
 };
 
-//! Measures `mesh`. `sharp_angle_deg` is the angle between the two face normals above which an
-//! edge counts as sharp (60 degrees in the project's acceptance criteria).
+//! Which edges MeshQuality::sharp_edge_length counts.
+struct SharpEdgeCriterion {
+    //! The angle between the two face normals above which an edge counts as sharp, in degrees
+    //! (60 in the project's acceptance criteria).
+    double angle_deg = 60.0;
+    //! An edge of a triangle narrower than this (its smallest altitude, in the mesh's units)
+    //! does not count: a crease of a tessellation's sliver (a ring of them joining two facetings
+    //! of one cylinder) stands for no feature a mesh of well-shaped triangles of the target size
+    //! can have. 0 counts every edge.
+    double min_width = 0.0;
+};
+
+//! Measures `mesh`, its sharp edges as `sharp` says.
 //! Details: a non-manifold vertex is one whose incident triangles form two or more groups not
 //! connected through edges at the vertex (a non-manifold edge alone does not make its vertices
 //! non-manifold). The sharp-edge angle does not depend on orientation: where the two triangles
 //! of an edge disagree in orientation one normal is flipped first. Empty meshes give zeros.
 //! Throws InvalidInput if a triangle index is out of range.
-MeshQuality measure_quality(const Mesh& mesh, double sharp_angle_deg = 60.0);
+MeshQuality measure_quality(const Mesh& mesh, const SharpEdgeCriterion& sharp = {});
 
 class AabbTree;
 
