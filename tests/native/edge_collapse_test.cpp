@@ -1,9 +1,15 @@
+#include "liftremesh/aabb_tree.h"
 #include "liftremesh/edge_collapse.h"
+#include "liftremesh/exceptions.h"
 #include "liftremesh/quality.h"
 #include "helpers.h"
 #include "topology_helpers.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <vector>
 
 using namespace liftremesh;
 
@@ -77,4 +83,104 @@ TEST(EdgeCollapse, NeverJoinsTwoBoundaryVerticesThroughTheInside) {
     EXPECT_EQ(after.nonmanifold_vertices, 0);
     EXPECT_EQ(after.chi, before.chi);
     EXPECT_EQ(after.boundary_edges, before.boundary_edges);
+}
+
+namespace {
+
+//! Vertex x of m (inside a closed surface) split in two along the path n_0 - x - n_(k/2) of its
+//! neighbours n_0 ... n_(k-1) in fan order: x keeps the triangles from n_0 to n_(k/2), moved
+//! `offset` towards them, a new vertex takes the others, moved as far towards those, and the
+//! slit between them is closed by the edge n_0 - n_(k/2), not by an edge between the two halves
+//! of x: two triangles (n_0, x, n_(k/2)) and (n_(k/2), x', n_0) folded shut onto each other.
+Mesh with_pair_folded_shut(const Mesh& m, int32_t x, double offset) {
+    std::map<int32_t, int32_t> next; // around x: (x, u, next[u]) is a triangle
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (m.triangles(f, j) == x) next[m.triangles(f, (j + 1) % 3)] = m.triangles(f, (j + 2) % 3);
+    std::vector<int32_t> ring = {next.begin()->first};
+    while (static_cast<int32_t>(ring.size()) < static_cast<int32_t>(next.size())) ring.push_back(next[ring.back()]);
+    const size_t half = ring.size() / 2;
+    Mesh out = m;
+    const int32_t y = static_cast<int32_t>(m.points.rows());
+    out.points.conservativeResize(y + 1, 3);
+    Eigen::Vector3d towards_x = Eigen::Vector3d::Zero(), towards_y = Eigen::Vector3d::Zero();
+    for (size_t i = 1; i < half; ++i) towards_x += m.points.row(ring[i]).transpose() / static_cast<double>(half - 1);
+    for (size_t i = half + 1; i < ring.size(); ++i)
+        towards_y += m.points.row(ring[i]).transpose() / static_cast<double>(ring.size() - half - 1);
+    const Eigen::Vector3d p = m.points.row(x).transpose();
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (m.triangles(f, j) == x) {
+                const int32_t u = m.triangles(f, (j + 1) % 3);
+                const size_t i = static_cast<size_t>(std::find(ring.begin(), ring.end(), u) - ring.begin());
+                if (i >= half) out.triangles(f, j) = y;
+            }
+    out.points.row(x) = (p + offset * (towards_x - p).normalized()).transpose();
+    out.points.row(y) = (p + offset * (towards_y - p).normalized()).transpose();
+    const Eigen::Index rows = out.triangles.rows();
+    out.triangles.conservativeResize(rows + 2, 3);
+    out.triangles.row(rows) << ring[0], x, ring[half];
+    out.triangles.row(rows + 1) << ring[half], y, ring[0];
+    return out;
+}
+
+} // namespace
+
+// An icosphere (edges of about 0.15) with a pair folded shut, made as a vertex split whose slit
+// is closed the wrong way round: two triangles on the edge between two opposite neighbours of
+// the vertex, 0.3 long and 0.011 under it, their apexes its two halves, 0.0005 to either side of
+// where it was: they turn by about 175 degrees (the chip resistor 1210_SMD had such a pair at a
+// corner of its body, 175 degrees, its apexes 4% of the edge apart). The pair goes, its apexes
+// joined: the sphere again, one vertex and two triangles fewer, closed, nothing folded, no
+// triangle facing inwards or under kappa 0.3.
+TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const int32_t x = 100; // valence 6 (not one of the icosahedron's twelve)
+    Mesh m = with_pair_folded_shut(sphere, x, 0.0005);
+    ASSERT_TRUE(test::topology(m).closed_oriented_manifold());
+    ASSERT_EQ(test::topology(m).chi, 2);
+    ASSERT_GT(measure_quality(m, {170.0}).sharp_edge_length, 0.0); // the fold
+    const long vertices = m.points.rows(), triangles = m.triangles.rows();
+
+    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere)), 1);
+    EXPECT_EQ(m.points.rows(), vertices - 1);
+    EXPECT_EQ(m.triangles.rows(), triangles - 2);
+    const test::Topology t = test::topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(measure_quality(m, {90.0}).sharp_edge_length, 0.0);
+    EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
+    EXPECT_GE(test::min_kappa(m), 0.3);
+    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere)), 0); // nothing left to remove
+}
+
+// The same pair, its apexes 0.001 apart at an edge of 0.3, is left alone when the apexes must be
+// closer than that (gap_ratio), or the turn larger (min_turn_deg).
+TEST(FoldedPairs, ThePairMustTurnFarAndItsApexesBeClose) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    for (const FoldedPairParams& p : {FoldedPairParams{150.0, 0.001, 0.3}, FoldedPairParams{179.0, 0.25, 0.3}}) {
+        Mesh m = folded;
+        EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere), p), 0);
+        EXPECT_EQ(m.triangles, folded.triangles);
+    }
+}
+
+// The same pair measured against an input that has it (a knife edge of the input, followed by
+// the output): each triangle lies on the input, facing as it does, and the pair is kept.
+TEST(FoldedPairs, APairTheInputHasIsKept) {
+    const Mesh folded = with_pair_folded_shut(test::make_icosphere(3), 100, 0.0005);
+    Mesh m = folded;
+    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(folded)), 0);
+    EXPECT_EQ(m.triangles, folded.triangles);
+    EXPECT_EQ(m.points, folded.points);
+}
+
+TEST(FoldedPairs, RefusesParametersOutOfRange) {
+    Mesh m = test::make_icosphere(1);
+    const AabbTree tree(m);
+    for (const FoldedPairParams& p : {FoldedPairParams{90.0, 0.25, 0.3}, FoldedPairParams{180.0, 0.25, 0.3},
+                                      FoldedPairParams{150.0, 0.0, 0.3}, FoldedPairParams{150.0, 1.0, 0.3},
+                                      FoldedPairParams{150.0, 0.25, -0.1}, FoldedPairParams{150.0, 0.25, 1.5}})
+        EXPECT_THROW(collapse_folded_pairs(m, tree, p), InvalidInput);
 }

@@ -1,10 +1,14 @@
 #include "liftremesh/edge_collapse.h"
 
+#include "liftremesh/aabb_tree.h"
+#include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <iterator>
+#include <optional>
 #include <tuple>
 
 namespace liftremesh {
@@ -72,11 +76,168 @@ double try_collapse(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t g
     return worst > old_min ? worst : -1.0;
 }
 
+// The collapses of one mesh: its triangles' fans and boundary kept up to date, triangles
+// marked dead, compacted by finish().
+class Collapser {
+public:
+    explicit Collapser(Mesh& mesh) : mesh_(mesh) {
+        const Eigen::Index nf = mesh.triangles.rows();
+        // On an open surface, an interior edge between two boundary vertices must stay:
+        // collapsing it joins the two boundaries at one vertex (the link condition with the
+        // boundary's virtual vertex).
+        on_boundary_.assign(static_cast<size_t>(mesh.points.rows()), 0);
+        for (const EdgeCount& e : edge_counts(mesh.triangles))
+            if (e.count == 1) on_boundary_[e.a] = on_boundary_[e.b] = 1;
+        adj_.triangles_of.resize(mesh.points.rows());
+        adj_.alive.assign(nf, 1);
+        for (Eigen::Index f = 0; f < nf; ++f)
+            for (int j = 0; j < 3; ++j) adj_.triangles_of[mesh.triangles(f, j)].push_back(static_cast<int32_t>(f));
+    }
+
+    //! Smallest kappa of the triangles around the given vertices.
+    double worst_kappa_around(std::initializer_list<int32_t> vertices) const {
+        double worst = 1.0;
+        for (int32_t v : vertices)
+            for (int32_t f : adj_.triangles_of[v]) worst = std::min(worst, kappa_of(mesh_, corners(mesh_, f)));
+        return worst;
+    }
+
+    //! The two live triangles of edge a-b, a -> b -> c and b -> a -> d (an oriented manifold
+    //! edge), as {f1, f2, c, d}; none otherwise.
+    std::optional<std::array<int32_t, 4>> quad(int32_t a, int32_t b) const {
+        std::array<int32_t, 4> q{-1, -1, -1, -1};
+        int found = 0;
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            const int i = t[0] == a ? 0 : t[1] == a ? 1 : 2;
+            if (t[(i + 1) % 3] == b) {
+                q[0] = f;
+                q[2] = t[(i + 2) % 3];
+            } else if (t[(i + 2) % 3] == b) {
+                q[1] = f;
+                q[3] = t[(i + 1) % 3];
+            } else {
+                continue;
+            }
+            ++found;
+        }
+        if (found != 2 || q[0] < 0 || q[1] < 0) return std::nullopt;
+        return q;
+    }
+
+    //! Whether a and b are joined by an edge.
+    bool joined(int32_t a, int32_t b) const {
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            if (std::find(t.begin(), t.end(), b) != t.end()) return true;
+        }
+        return false;
+    }
+
+    //! Flips edge a-b of quad {f1, f2, c, d} (see quad()) to c-d: (a, d, c) and (d, b, c), the
+    //! quad's orientation kept. Returns the two triangles as they were, for unflip().
+    std::array<std::array<int32_t, 3>, 2> flip(int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
+        const auto [f1, f2, c, d] = q;
+        const std::array<std::array<int32_t, 3>, 2> was = {corners(mesh_, f1), corners(mesh_, f2)};
+        mesh_.triangles.row(f1) << a, d, c;
+        mesh_.triangles.row(f2) << d, b, c;
+        drop(a, f2);
+        drop(b, f1);
+        adj_.triangles_of[c].push_back(f2);
+        adj_.triangles_of[d].push_back(f1);
+        return was;
+    }
+
+    //! Undoes flip(a, b, q), which returned `was`.
+    void unflip(int32_t a, int32_t b, const std::array<int32_t, 4>& q, const std::array<std::array<int32_t, 3>, 2>& was) {
+        const auto [f1, f2, c, d] = q;
+        for (int j = 0; j < 3; ++j) {
+            mesh_.triangles(f1, j) = was[0][j];
+            mesh_.triangles(f2, j) = was[1][j];
+        }
+        drop(c, f2);
+        drop(d, f1);
+        adj_.triangles_of[a].push_back(f2);
+        adj_.triangles_of[b].push_back(f1);
+    }
+
+    //! Collapses edge a-b onto one of its end points if that keeps an oriented manifold with the
+    //! same Euler characteristic (see collapse_short_edges) and the new fan's worst kappa is above
+    //! `must_beat`. Returns whether it did.
+    bool collapse(int32_t a, int32_t b, double must_beat) {
+        // The edge must still exist with exactly two triangles, whose opposite vertices are the
+        // only common neighbours of a and b (link condition: the collapse keeps a manifold).
+        std::vector<int32_t> shared, opposite;
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            if (std::find(t.begin(), t.end(), b) == t.end()) continue;
+            shared.push_back(f);
+            for (int32_t v : t)
+                if (v != a && v != b) opposite.push_back(v);
+        }
+        if (shared.size() != 2 || opposite[0] == opposite[1]) return false;
+        if (on_boundary_[a] && on_boundary_[b]) return false;
+        const std::vector<int32_t> na = neighbours(mesh_, adj_, a), nb = neighbours(mesh_, adj_, b);
+        std::vector<int32_t> common;
+        std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+        std::sort(opposite.begin(), opposite.end());
+        if (common != opposite) return false;
+        if (na.size() + nb.size() <= 6) return false; // would leave a degenerate (tetrahedron-like) piece
+        bool low_valence = false;                      // the opposite vertices lose an edge each
+        for (int32_t v : opposite) low_valence = low_valence || adj_.triangles_of[v].size() <= 3;
+        if (low_valence) return false;
+
+        const double keep_a = try_collapse(mesh_, adj_, a, b, must_beat);
+        const double keep_b = try_collapse(mesh_, adj_, b, a, must_beat);
+        if (keep_a < 0.0 && keep_b < 0.0) return false;
+        bool a_stays = keep_a >= 0.0;
+        if (keep_a >= 0.0 && keep_b >= 0.0) a_stays = angle_defect(mesh_, adj_, a) >= angle_defect(mesh_, adj_, b);
+        const int32_t kept = a_stays ? a : b, gone = a_stays ? b : a;
+
+        for (int32_t f : shared) {
+            adj_.alive[f] = 0;
+            for (int32_t v : corners(mesh_, f)) drop(v, f);
+        }
+        for (int32_t f : adj_.triangles_of[gone]) {
+            for (int j = 0; j < 3; ++j)
+                if (mesh_.triangles(f, j) == gone) mesh_.triangles(f, j) = kept;
+            adj_.triangles_of[kept].push_back(f);
+        }
+        adj_.triangles_of[gone].clear();
+        on_boundary_[kept] = on_boundary_[kept] || on_boundary_[gone];
+        ++collapsed_;
+        return true;
+    }
+
+    //! Removes the dead triangles and the vertices no triangle uses. Returns the collapses.
+    long finish() {
+        if (collapsed_ == 0) return 0;
+        const Eigen::Index nf = mesh_.triangles.rows();
+        Triangles kept_triangles(nf - 2 * collapsed_, 3);
+        Eigen::Index row = 0;
+        for (Eigen::Index f = 0; f < nf; ++f)
+            if (adj_.alive[f]) kept_triangles.row(row++) = mesh_.triangles.row(f);
+        mesh_.triangles = std::move(kept_triangles);
+        remove_unreferenced_vertices(mesh_);
+        return collapsed_;
+    }
+
+private:
+    void drop(int32_t v, int32_t f) {
+        auto& list = adj_.triangles_of[v];
+        list.erase(std::remove(list.begin(), list.end(), f), list.end());
+    }
+
+    Mesh& mesh_;
+    Adjacency adj_;
+    std::vector<char> on_boundary_;
+    long collapsed_ = 0;
+};
+
 } // namespace
 
 long collapse_short_edges(Mesh& mesh, double ratio) {
-    const Eigen::Index nf = mesh.triangles.rows();
-    if (nf == 0) return 0;
+    if (mesh.triangles.rows() == 0) return 0;
     std::vector<EdgeCount> edges = edge_counts(mesh.triangles);
     std::vector<double> lengths;
     lengths.reserve(edges.size());
@@ -91,77 +252,48 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
     if (candidates.empty()) return 0;
     std::sort(candidates.begin(), candidates.end());
 
-    // On an open surface, an interior edge between two boundary vertices must stay: collapsing
-    // it joins the two boundaries at one vertex (the link condition with the boundary's virtual
-    // vertex).
-    std::vector<char> on_boundary(static_cast<size_t>(mesh.points.rows()), 0);
-    for (const EdgeCount& e : edges)
-        if (e.count == 1) on_boundary[e.a] = on_boundary[e.b] = 1;
+    Collapser collapser(mesh);
+    for (const auto& [length, a, b] : candidates) collapser.collapse(a, b, collapser.worst_kappa_around({a, b}));
+    return collapser.finish();
+}
 
-    Adjacency adj;
-    adj.triangles_of.resize(mesh.points.rows());
-    adj.alive.assign(nf, 1);
-    for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 0; j < 3; ++j) adj.triangles_of[mesh.triangles(f, j)].push_back(static_cast<int32_t>(f));
+long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairParams& params) {
+    if (!(params.min_turn_deg > 90.0 && params.min_turn_deg < 180.0) || !(params.gap_ratio > 0.0 && params.gap_ratio < 1.0) ||
+        !(params.kappa_floor >= 0.0 && params.kappa_floor <= 1.0))
+        throw InvalidInput("collapse_folded_pairs: min_turn_deg must lie in (90, 180), gap_ratio in (0, 1) and "
+                           "kappa_floor in [0, 1]");
+    check_indices(mesh, "folded pairs' mesh");
+    if (mesh.triangles.rows() == 0) return 0;
+    const double cos_turn = std::cos(params.min_turn_deg * M_PI / 180.0);
+    auto normal_of = [&](int32_t f) {
+        return triangle_normal(position(mesh, mesh.triangles(f, 0)), position(mesh, mesh.triangles(f, 1)),
+                               position(mesh, mesh.triangles(f, 2)));
+    };
+    // Whether triangle f faces against the input's triangle nearest to its centroid.
+    auto faces_against_input = [&](int32_t f) {
+        const Eigen::Vector3d centroid = (position(mesh, mesh.triangles(f, 0)) + position(mesh, mesh.triangles(f, 1)) +
+                                          position(mesh, mesh.triangles(f, 2))) / 3.0;
+        const ClosestPoint near = input.closest(centroid);
+        return near.triangle >= 0 && normal_of(f).dot(input.triangle_normal(near.triangle)) < 0.0;
+    };
 
-    long collapsed = 0;
-    for (const auto& [length, a, b] : candidates) {
-        // The edge must still exist with exactly two triangles, whose opposite vertices are the
-        // only common neighbours of a and b (link condition: the collapse keeps a manifold).
-        std::vector<int32_t> shared, opposite;
-        for (int32_t f : adj.triangles_of[a]) {
-            const auto t = corners(mesh, f);
-            if (std::find(t.begin(), t.end(), b) == t.end()) continue;
-            shared.push_back(f);
-            for (int32_t v : t)
-                if (v != a && v != b) opposite.push_back(v);
-        }
-        if (shared.size() != 2 || opposite[0] == opposite[1]) continue;
-        if (on_boundary[a] && on_boundary[b]) continue;
-        const std::vector<int32_t> na = neighbours(mesh, adj, a), nb = neighbours(mesh, adj, b);
-        std::vector<int32_t> common;
-        std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
-        std::sort(opposite.begin(), opposite.end());
-        if (common != opposite) continue;
-        if (na.size() + nb.size() <= 6) continue; // would leave a degenerate (tetrahedron-like) piece
-        bool low_valence = false;                  // the opposite vertices lose an edge each
-        for (int32_t v : opposite) low_valence = low_valence || adj.triangles_of[v].size() <= 3;
-        if (low_valence) continue;
-
-        double old_min = 1.0;
-        for (int32_t v : {a, b})
-            for (int32_t f : adj.triangles_of[v]) old_min = std::min(old_min, kappa_of(mesh, corners(mesh, f)));
-        const double keep_a = try_collapse(mesh, adj, a, b, old_min);
-        const double keep_b = try_collapse(mesh, adj, b, a, old_min);
-        if (keep_a < 0.0 && keep_b < 0.0) continue;
-        bool a_stays = keep_a >= 0.0;
-        if (keep_a >= 0.0 && keep_b >= 0.0) a_stays = angle_defect(mesh, adj, a) >= angle_defect(mesh, adj, b);
-        const int32_t kept = a_stays ? a : b, gone = a_stays ? b : a;
-
-        for (int32_t f : shared) {
-            adj.alive[f] = 0;
-            for (int32_t v : corners(mesh, f)) {
-                auto& list = adj.triangles_of[v];
-                list.erase(std::remove(list.begin(), list.end(), f), list.end());
-            }
-        }
-        for (int32_t f : adj.triangles_of[gone]) {
-            for (int j = 0; j < 3; ++j)
-                if (mesh.triangles(f, j) == gone) mesh.triangles(f, j) = kept;
-            adj.triangles_of[kept].push_back(f);
-        }
-        adj.triangles_of[gone].clear();
-        on_boundary[kept] = on_boundary[kept] || on_boundary[gone];
-        ++collapsed;
+    Collapser collapser(mesh);
+    for (const EdgeCount& e : edge_counts(mesh.triangles)) {
+        if (e.count != 2) continue;
+        const auto q = collapser.quad(e.a, e.b);
+        if (!q) continue; // not (or no longer) an oriented manifold edge
+        const auto [f1, f2, c, d] = *q;
+        const Eigen::Vector3d n1 = normal_of(f1), n2 = normal_of(f2);
+        if (c == d || n1.isZero(0.0) || n2.isZero(0.0) || !(n1.dot(n2) < cos_turn * n1.norm() * n2.norm())) continue;
+        const double gap = (position(mesh, c) - position(mesh, d)).norm();
+        if (!(gap < params.gap_ratio * (position(mesh, e.a) - position(mesh, e.b)).norm())) continue;
+        if (!faces_against_input(f1) && !faces_against_input(f2)) continue; // a knife edge's, on the input
+        if (collapser.joined(c, d)) continue;
+        const double must_beat = std::min(collapser.worst_kappa_around({e.a, e.b, c, d}), params.kappa_floor);
+        const auto was = collapser.flip(e.a, e.b, *q);
+        if (!collapser.collapse(c, d, must_beat)) collapser.unflip(e.a, e.b, *q, was);
     }
-    if (collapsed == 0) return 0;
-    Triangles kept_triangles(nf - 2 * collapsed, 3);
-    Eigen::Index row = 0;
-    for (Eigen::Index f = 0; f < nf; ++f)
-        if (adj.alive[f]) kept_triangles.row(row++) = mesh.triangles.row(f);
-    mesh.triangles = std::move(kept_triangles);
-    remove_unreferenced_vertices(mesh);
-    return collapsed;
+    return collapser.finish();
 }
 
 } // namespace liftremesh

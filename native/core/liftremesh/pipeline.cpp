@@ -267,6 +267,8 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const QualityPolishStats polished = polish_quality(out, input_tree, polish);
     report.edges_flipped += onto_crease.flipped + polished.flipped;
     report.vertices_moved += onto_crease.moved + polished.moved;
+    // Pairs of triangles folded shut, which no step above sees (edge_collapse.h).
+    report.edges_collapsed += collapse_folded_pairs(out, input_tree);
     clock.end();
     return out;
 }

@@ -32,7 +32,7 @@ struct RemeshReport {
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair (repair.h), and flaps beyond an open
                                          //!< input's boundary (boundary_snap.h)
-    long edges_collapsed = 0;            //!< short edges collapsed (edge_collapse.h)
+    long edges_collapsed = 0;            //!< short edges and pairs folded shut collapsed (edge_collapse.h)
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
     long edges_flipped = 0;              //!< edges flipped at the end: for quality (quality_polish.h), onto knife
