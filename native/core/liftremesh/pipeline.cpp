@@ -450,7 +450,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         report.edges_flipped += untangled.flipped;
         report.vertices_moved += untangled.moved;
         crossings = std::move(untangled.crossings);
-        output_tree = AabbTree(out);
+        output_tree = untangled.tree ? std::move(*untangled.tree) : AabbTree(out);
     }
     clock.end();
 

@@ -196,18 +196,25 @@ UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.passes < 0)
         throw InvalidInput("untangle: the tolerance must be positive and finite, the passes not negative");
     UntangleStats stats;
+    // The crossings counted again on a fresh tree after each pass that changed the mesh; the
+    // last tree is the caller's (its own freed first, so that two are never held at once).
+    auto recount = [&]() {
+        stats.tree.reset();
+        stats.tree.emplace(mesh);
+        crossings = self_intersecting_pairs(mesh, *stats.tree);
+    };
     // Flips first, since they move no vertex; then moves for what they leave.
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
         const long flips = untangle_pass(mesh, input, crossings, params);
         if (flips == 0) break;
         stats.flipped += flips;
-        crossings = self_intersecting_pairs(mesh, AabbTree(mesh));
+        recount();
     }
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
         const long moves = move_pass(mesh, input, crossings, params);
         if (moves == 0) break;
         stats.moved += moves;
-        crossings = self_intersecting_pairs(mesh, AabbTree(mesh));
+        recount();
     }
     stats.crossings = std::move(crossings);
     return stats;

@@ -21,6 +21,7 @@
 #include "liftremesh/mesh.h"
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct UntangleStats {
     long flipped = 0; //!< edge flips
     long moved = 0;   //!< vertex moves
     std::vector<std::pair<int32_t, int32_t>> crossings; //!< what is left, as self_intersecting_pairs
+    //! AabbTree(mesh) of the mesh as left, which counted those, when a pass changed it; none
+    //! when none did (the mesh is as it came).
+    std::optional<AabbTree> tree;
 };
 
 //! Flips edges, then moves vertices, of the triangles in `crossings` (self_intersecting_pairs(mesh,
