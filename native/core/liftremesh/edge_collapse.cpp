@@ -276,22 +276,41 @@ long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairPa
         const ClosestPoint near = input.closest(centroid);
         return near.triangle >= 0 && normal_of(f).dot(input.triangle_normal(near.triangle)) < 0.0;
     };
+    // Whether the quad {f1, f2, c, d} of edge a-b (Collapser::quad) is a pair folded shut.
+    auto folded_shut = [&](int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
+        const auto [f1, f2, c, d] = q;
+        const Eigen::Vector3d n1 = normal_of(f1), n2 = normal_of(f2);
+        if (c == d || !(n1.dot(n2) < cos_turn * n1.norm() * n2.norm())) return false; // also for a zero normal
+        const double gap = (position(mesh, c) - position(mesh, d)).norm();
+        if (!(gap < params.gap_ratio * (position(mesh, a) - position(mesh, b)).norm())) return false;
+        return faces_against_input(f1) || faces_against_input(f2); // else a knife edge's, on the input
+    };
+
+    // The candidates from one scan of the edges; the collapser, which the rest needs, only for
+    // a mesh that has any (most have none).
+    std::vector<std::pair<int32_t, int32_t>> candidates;
+    const EdgeUses edges = edge_uses(mesh.triangles);
+    for (long e = 0; e < edges.size(); ++e) {
+        if (edges.count(e) != 2) continue;
+        const int32_t* use = edges.uses.begin(e);
+        if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) continue; // misoriented
+        // The first use runs a -> b -> c, the second b -> a -> d.
+        const int32_t f1 = use[0] / 3, j1 = use[0] % 3, f2 = use[1] / 3, j2 = use[1] % 3;
+        const int32_t a = mesh.triangles(f1, j1), b = mesh.triangles(f1, (j1 + 1) % 3);
+        if (folded_shut(a, b, {f1, f2, mesh.triangles(f1, (j1 + 2) % 3), mesh.triangles(f2, (j2 + 2) % 3)}))
+            candidates.emplace_back(a, b);
+    }
+    if (candidates.empty()) return 0;
 
     Collapser collapser(mesh);
-    for (const EdgeCount& e : edge_counts(mesh.triangles)) {
-        if (e.count != 2) continue;
-        const auto q = collapser.quad(e.a, e.b);
-        if (!q) continue; // not (or no longer) an oriented manifold edge
+    for (const auto& [a, b] : candidates) {
+        const auto q = collapser.quad(a, b); // as the collapses before this one left it
+        if (!q || !folded_shut(a, b, *q)) continue;
         const auto [f1, f2, c, d] = *q;
-        const Eigen::Vector3d n1 = normal_of(f1), n2 = normal_of(f2);
-        if (c == d || n1.isZero(0.0) || n2.isZero(0.0) || !(n1.dot(n2) < cos_turn * n1.norm() * n2.norm())) continue;
-        const double gap = (position(mesh, c) - position(mesh, d)).norm();
-        if (!(gap < params.gap_ratio * (position(mesh, e.a) - position(mesh, e.b)).norm())) continue;
-        if (!faces_against_input(f1) && !faces_against_input(f2)) continue; // a knife edge's, on the input
         if (collapser.joined(c, d)) continue;
-        const double must_beat = std::min(collapser.worst_kappa_around({e.a, e.b, c, d}), params.kappa_floor);
-        const auto was = collapser.flip(e.a, e.b, *q);
-        if (!collapser.collapse(c, d, must_beat)) collapser.unflip(e.a, e.b, *q, was);
+        const double must_beat = std::min(collapser.worst_kappa_around({a, b, c, d}), params.kappa_floor);
+        const auto was = collapser.flip(a, b, *q);
+        if (!collapser.collapse(c, d, must_beat)) collapser.unflip(a, b, *q, was);
     }
     return collapser.finish();
 }
