@@ -142,7 +142,7 @@ TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
     ASSERT_GT(measure_quality(m, {170.0}).sharp_edge_length, 0.0); // the fold
     const long vertices = m.points.rows(), triangles = m.triangles.rows();
 
-    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere)), 1);
+    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 1);
     EXPECT_EQ(m.points.rows(), vertices - 1);
     EXPECT_EQ(m.triangles.rows(), triangles - 2);
     const test::Topology t = test::topology(m);
@@ -151,7 +151,7 @@ TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
     EXPECT_EQ(measure_quality(m, {90.0}).sharp_edge_length, 0.0);
     EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
     EXPECT_GE(test::min_kappa(m), 0.3);
-    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere)), 0); // nothing left to remove
+    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 0); // nothing left to remove
 }
 
 // The same pair, its apexes 0.001 apart at an edge of 0.3, is left alone when the apexes must be
@@ -161,19 +161,61 @@ TEST(FoldedPairs, ThePairMustTurnFarAndItsApexesBeClose) {
     const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
     for (const FoldedPairParams& p : {FoldedPairParams{150.0, 0.001, 0.3}, FoldedPairParams{179.0, 0.25, 0.3}}) {
         Mesh m = folded;
-        EXPECT_EQ(collapse_folded_pairs(m, AabbTree(sphere), p), 0);
+        EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere), p), 0);
         EXPECT_EQ(m.triangles, folded.triangles);
     }
 }
 
-// The same pair measured against an input that has it (a knife edge of the input, followed by
-// the output): each triangle lies on the input, facing as it does, and the pair is kept.
-TEST(FoldedPairs, APairTheInputHasIsKept) {
-    const Mesh folded = with_pair_folded_shut(test::make_icosphere(3), 100, 0.0005);
+// The pair of with_pair_folded_shut: its edge's ends and the triangles' corners.
+struct FoldedPair {
+    Eigen::Vector3d a, b;
+    std::array<std::array<Eigen::Vector3d, 3>, 2> triangles;
+};
+
+FoldedPair folded_pair_of(const Mesh& folded) {
+    const Eigen::Index rows = folded.triangles.rows();
+    FoldedPair pair;
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 3; ++j) pair.triangles[k][j] = corner(folded, rows - 2 + k, j);
+    pair.a = pair.triangles[0][0];
+    pair.b = pair.triangles[0][2];
+    return pair;
+}
+
+// The pair measured against an input that has the same two triangles, each apart (its own
+// corners, joined to nothing: no crease): each lies on the input, facing as it does, and the pair
+// is kept.
+TEST(FoldedPairs, APairWhoseTrianglesFaceAsTheInputIsKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    const FoldedPair pair = folded_pair_of(folded);
+    Mesh input = sphere;
+    for (const auto& t : pair.triangles) input = test::joined(input, test::make_mesh({t[0], t[1], t[2]}, {{0, 1, 2}}));
     Mesh m = folded;
-    EXPECT_EQ(collapse_folded_pairs(m, AabbTree(folded)), 0);
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
     EXPECT_EQ(m.triangles, folded.triangles);
     EXPECT_EQ(m.points, folded.points);
+}
+
+// The pair against an input with a knife edge (a tent of two triangles turning by 157 degrees)
+// 0.08 outside the middle of the pair's edge, within its length (0.3) but farther from its
+// triangles than the sphere (which they face against): kept, as a pair standing for that edge
+// would be; with the knife edge taken as a crease only past 160 degrees, removed.
+TEST(FoldedPairs, APairNearAKnifeEdgeOfTheInputIsKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    const FoldedPair pair = folded_pair_of(folded);
+    const Eigen::Vector3d mid = 0.5 * (pair.a + pair.b), r = mid.normalized(), t = (pair.b - pair.a).normalized();
+    const Eigen::Vector3d s = r.cross(t), e = mid + 0.08 * r;
+    const Mesh knife = test::make_mesh({e - 0.05 * t, e + 0.05 * t, e + 0.05 * r + 0.01 * s, e + 0.05 * r - 0.01 * s},
+                                       {{0, 1, 2}, {1, 0, 3}});
+    const Mesh input = test::joined(sphere, knife);
+    Mesh m = folded;
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
+    EXPECT_EQ(m.triangles, folded.triangles);
+    FoldedPairParams sharper;
+    sharper.knife_turn_deg = 160.0;
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input), sharper), 1);
 }
 
 TEST(FoldedPairs, RefusesParametersOutOfRange) {
@@ -181,6 +223,7 @@ TEST(FoldedPairs, RefusesParametersOutOfRange) {
     const AabbTree tree(m);
     for (const FoldedPairParams& p : {FoldedPairParams{90.0, 0.25, 0.3}, FoldedPairParams{180.0, 0.25, 0.3},
                                       FoldedPairParams{150.0, 0.0, 0.3}, FoldedPairParams{150.0, 1.0, 0.3},
-                                      FoldedPairParams{150.0, 0.25, -0.1}, FoldedPairParams{150.0, 0.25, 1.5}})
-        EXPECT_THROW(collapse_folded_pairs(m, tree, p), InvalidInput);
+                                      FoldedPairParams{150.0, 0.25, -0.1}, FoldedPairParams{150.0, 0.25, 1.5},
+                                      FoldedPairParams{150.0, 0.25, 0.3, 0.0}, FoldedPairParams{150.0, 0.25, 0.3, 180.0}})
+        EXPECT_THROW(collapse_folded_pairs(m, m, tree, p), InvalidInput);
 }

@@ -1,6 +1,7 @@
 #include "liftremesh/edge_collapse.h"
 
 #include "liftremesh/aabb_tree.h"
+#include "liftremesh/acute_creases.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
 
@@ -257,11 +258,12 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
     return collapser.finish();
 }
 
-long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairParams& params) {
+long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree, const FoldedPairParams& params) {
     if (!(params.min_turn_deg > 90.0 && params.min_turn_deg < 180.0) || !(params.gap_ratio > 0.0 && params.gap_ratio < 1.0) ||
-        !(params.kappa_floor >= 0.0 && params.kappa_floor <= 1.0))
-        throw InvalidInput("collapse_folded_pairs: min_turn_deg must lie in (90, 180), gap_ratio in (0, 1) and "
-                           "kappa_floor in [0, 1]");
+        !(params.kappa_floor >= 0.0 && params.kappa_floor <= 1.0) ||
+        !(params.knife_turn_deg > 0.0 && params.knife_turn_deg < 180.0))
+        throw InvalidInput("collapse_folded_pairs: min_turn_deg must lie in (90, 180), gap_ratio in (0, 1), "
+                           "kappa_floor in [0, 1] and knife_turn_deg in (0, 180)");
     check_indices(mesh, "folded pairs' mesh");
     if (mesh.triangles.rows() == 0) return 0;
     const double cos_turn = std::cos(params.min_turn_deg * M_PI / 180.0);
@@ -273,8 +275,8 @@ long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairPa
     auto faces_against_input = [&](int32_t f) {
         const Eigen::Vector3d centroid = (position(mesh, mesh.triangles(f, 0)) + position(mesh, mesh.triangles(f, 1)) +
                                           position(mesh, mesh.triangles(f, 2))) / 3.0;
-        const ClosestPoint near = input.closest(centroid);
-        return near.triangle >= 0 && normal_of(f).dot(input.triangle_normal(near.triangle)) < 0.0;
+        const ClosestPoint near = input_tree.closest(centroid);
+        return near.triangle >= 0 && normal_of(f).dot(input_tree.triangle_normal(near.triangle)) < 0.0;
     };
     // Whether the quad {f1, f2, c, d} of edge a-b (Collapser::quad) is a pair folded shut.
     auto folded_shut = [&](int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
@@ -302,10 +304,17 @@ long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairPa
     }
     if (candidates.empty()) return 0;
 
+    // A pair within its edge's length of a knife edge of the input, whose two faces there are
+    // easily each other's nearest triangles, stands for it: kept. Sampled at the longest edge.
+    double longest = 0.0;
+    for (const auto& [a, b] : candidates) longest = std::max(longest, (position(mesh, a) - position(mesh, b)).norm());
+    const AcuteCreases knives(input, input_tree, params.knife_turn_deg, longest);
     Collapser collapser(mesh);
     for (const auto& [a, b] : candidates) {
         const auto q = collapser.quad(a, b); // as the collapses before this one left it
         if (!q || !folded_shut(a, b, *q)) continue;
+        const Eigen::Vector3d pa = position(mesh, a), pb = position(mesh, b);
+        if (knives.closest(0.5 * (pa + pb), (pa - pb).norm())) continue;
         const auto [f1, f2, c, d] = *q;
         if (collapser.joined(c, d)) continue;
         const double must_beat = std::min(collapser.worst_kappa_around({a, b, c, d}), params.kappa_floor);

@@ -7,7 +7,9 @@
 //   I22_2_5_16: 177 degrees, apexes 0.018 apart at an edge of 0.33). Neither triangle is far from
 //   the input, nor do they cross, so neither the fold flips of quality_polish.h nor untangle.h
 //   see them; a flip alone would leave two slivers. The edge is flipped and the short new edge
-//   between the apexes collapsed, which takes both triangles out and joins their apexes.
+//   between the apexes collapsed, which takes both triangles out and joins their apexes. Near a
+//   knife edge of the input (FreeCAD's connector TSM_104, seed 3: 172 degrees, apexes 12% of the
+//   edge apart, one of them on the knife edge) such a pair stands for it and is kept.
 #pragma once
 
 #include "liftremesh/mesh.h"
@@ -37,17 +39,22 @@ struct FoldedPairParams {
     //! No triangle the collapse leaves has a kappa (Eq. 26) under this or under the worst of the
     //! triangles around the four vertices before it, whichever is lower. In [0, 1].
     double kappa_floor = 0.3;
+    //! A pair within its edge's length of an acute crease of the input (its triangles turning by
+    //! more than this, degrees, in (0, 180): acute_creases.h) is kept. The crease snap's 120.
+    double knife_turn_deg = 120.0;
 };
 
 //! Removes pairs folded shut (see above): an interior, oriented edge whose two triangles turn by
 //! more than params.min_turn_deg, whose apexes lie closer together than params.gap_ratio times
-//! its length, and one of whose triangles faces against the input's triangle nearest to its
-//! centroid (`input` is the input's tree: a knife edge of the input, followed, has both on it)
-//! is flipped to join the apexes, and that edge collapsed, under the rules of
-//! collapse_short_edges but for the kappa (params.kappa_floor); where the collapse is not
-//! allowed the flip is undone. Each removal takes out two triangles and a vertex and keeps the
-//! Euler characteristic. Returns the removals; unreferenced vertices are removed. Throws
-//! InvalidInput if a parameter is out of range or an index is.
-long collapse_folded_pairs(Mesh& mesh, const AabbTree& input, const FoldedPairParams& params = {});
+//! its length, one of whose triangles faces against the input's triangle nearest to its centroid
+//! (a knife edge of the input, followed, has both on it) and which lies farther than its length
+//! from the input's acute creases (params.knife_turn_deg) is flipped to join the apexes, and that
+//! edge collapsed, under the rules of collapse_short_edges but for the kappa
+//! (params.kappa_floor); where the collapse is not allowed the flip is undone. `input_tree` is
+//! AabbTree(input). Each removal takes out two triangles and a vertex and keeps the Euler
+//! characteristic. Returns the removals; unreferenced vertices are removed. Throws InvalidInput
+//! if a parameter is out of range or an index is.
+long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
+                           const FoldedPairParams& params = {});
 
 } // namespace liftremesh

@@ -268,7 +268,7 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     report.edges_flipped += onto_crease.flipped + polished.flipped;
     report.vertices_moved += onto_crease.moved + polished.moved;
     // Pairs of triangles folded shut, which no step above sees (edge_collapse.h).
-    report.edges_collapsed += collapse_folded_pairs(out, input_tree);
+    report.edges_collapsed += collapse_folded_pairs(out, input, input_tree);
     clock.end();
     return out;
 }
