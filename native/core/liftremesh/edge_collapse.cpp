@@ -305,10 +305,14 @@ long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_
     if (candidates.empty()) return 0;
 
     // A pair within its edge's length of a knife edge of the input, whose two faces there are
-    // easily each other's nearest triangles, stands for it: kept. Sampled at the longest edge.
-    double longest = 0.0;
-    for (const auto& [a, b] : candidates) longest = std::max(longest, (position(mesh, a) - position(mesh, b)).norm());
-    const AcuteCreases knives(input, input_tree, params.knife_turn_deg, longest);
+    // easily each other's nearest triangles, stands for it: kept. The creases sampled at the
+    // longest such edge, or a thousandth of the input's size if that is longer (a bound on the
+    // samples whatever the edges).
+    double spacing = 0.0;
+    for (const auto& [a, b] : candidates) spacing = std::max(spacing, (position(mesh, a) - position(mesh, b)).norm());
+    if (input.points.rows() > 0)
+        spacing = std::max(spacing, 1e-3 * (input.points.colwise().maxCoeff() - input.points.colwise().minCoeff()).norm());
+    const AcuteCreases knives(input, input_tree, params.knife_turn_deg, spacing);
     Collapser collapser(mesh);
     for (const auto& [a, b] : candidates) {
         const auto q = collapser.quad(a, b); // as the collapses before this one left it
