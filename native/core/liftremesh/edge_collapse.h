@@ -34,7 +34,8 @@ struct FoldedPairParams {
     double min_turn_deg = 150.0;
     //! and their apexes lie closer together than this times the edge's length, in (0, 1). A
     //! knife edge's apexes stand apart by 2 sin(beta / 2) times their distance from it (beta its
-    //! interior angle: 0.52 at 30 degrees); the folded pairs met are 0.04 and 0.05.
+    //! interior angle: 0.52 at 30 degrees); the pairs removed in the Idflibs survey are 0.04
+    //! to 0.21.
     double gap_ratio = 0.25;
     //! No triangle the collapse leaves has a kappa (Eq. 26) under this or under the worst of the
     //! triangles around the four vertices before it, whichever is lower. In [0, 1].
