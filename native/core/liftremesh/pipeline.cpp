@@ -443,14 +443,13 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     AabbTree output_tree(out);
     std::vector<std::pair<int32_t, int32_t>> crossings = self_intersecting_pairs(out, output_tree);
     if (!crossings.empty()) {
-        output_tree = AabbTree(Mesh{}); // freed while untangling, which makes its own
         UntangleParams untangling;
         untangling.tolerance = repair_tolerance(spacing, to_unit);
-        UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling);
+        UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling, std::move(output_tree));
         report.edges_flipped += untangled.flipped;
         report.vertices_moved += untangled.moved;
         crossings = std::move(untangled.crossings);
-        output_tree = untangled.tree ? std::move(*untangled.tree) : AabbTree(out);
+        output_tree = std::move(*untangled.tree);
     }
     clock.end();
 

@@ -24,12 +24,12 @@ std::array<Eigen::Vector3d, 3> corners(const EditableMesh& mesh, const Tri& t) {
 //! pass has changed since, flipped or moved (their boxes are no longer the tree's).
 struct PassTriangles {
     const EditableMesh& mesh;
-    AabbTree tree;
+    const AabbTree& tree;
     std::vector<char> changed; // per triangle
     std::vector<int> changed_list;
     std::vector<int32_t> found; // scratch
 
-    explicit PassTriangles(const EditableMesh& m) : mesh(m), tree(m.to_mesh()), changed(m.tris.size(), 0) {}
+    PassTriangles(const EditableMesh& m, const AabbTree& t) : mesh(m), tree(t), changed(m.tris.size(), 0) {}
 
     void mark_changed(int t) {
         if (!changed[static_cast<size_t>(t)]) changed_list.push_back(t);
@@ -75,10 +75,10 @@ struct PassTriangles {
 
 //! One pass of flips around the triangles of `crossings` (see untangle()), written into
 //! `mesh`; the pass's copies of the mesh are gone when it returns. Returns the flips.
-long untangle_pass(Mesh& mesh, const AabbTree& input, const std::vector<std::pair<int32_t, int32_t>>& crossings,
-                   const UntangleParams& params) {
+long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
+                   const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
     EditableMesh edit(mesh);
-    PassTriangles triangles(edit);
+    PassTriangles triangles(edit, mesh_tree);
     std::vector<char> around(edit.tris.size(), 0), changed;
     for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
     const auto accept = [&](const EditableMesh::Quad& q) {
@@ -126,10 +126,10 @@ FanState fan_state(const EditableMesh& mesh, const std::vector<Tri>& fan, const 
 
 //! One pass of moves over the inner vertices of the triangles of `crossings`, in index order
 //! (see untangle()), written into `mesh`. Returns the moves.
-long move_pass(Mesh& mesh, const AabbTree& input, const std::vector<std::pair<int32_t, int32_t>>& crossings,
-               const UntangleParams& params) {
+long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
+               const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
     EditableMesh edit(mesh);
-    PassTriangles triangles(edit);
+    PassTriangles triangles(edit, mesh_tree);
     const CompressedRows fans = edit.fans();
     const std::vector<char> on_border = edit.border_points();
     std::vector<int32_t> candidates;
@@ -191,32 +191,37 @@ long move_pass(Mesh& mesh, const AabbTree& input, const std::vector<std::pair<in
 } // namespace
 
 UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
-                       const UntangleParams& params) {
+                       const UntangleParams& params, std::optional<AabbTree> mesh_tree) {
     check_indices(mesh, "untangled mesh");
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.passes < 0)
         throw InvalidInput("untangle: the tolerance must be positive and finite, the passes not negative");
     UntangleStats stats;
-    // The crossings counted again on a fresh tree after each pass that changed the mesh; the
-    // last tree is the caller's (its own freed first, so that two are never held at once).
+    // One tree of the mesh at a time: the one each pass finds it with, made again after each pass
+    // that changed it (the pass's copies gone by then), for the next pass and the crossings left.
+    stats.tree = std::move(mesh_tree);
+    auto tree = [&]() -> const AabbTree& {
+        if (!stats.tree) stats.tree.emplace(mesh);
+        return *stats.tree;
+    };
     auto recount = [&]() {
         stats.tree.reset();
-        stats.tree.emplace(mesh);
-        crossings = self_intersecting_pairs(mesh, *stats.tree);
+        crossings = self_intersecting_pairs(mesh, tree());
     };
     // Flips first, since they move no vertex; then moves for what they leave.
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-        const long flips = untangle_pass(mesh, input, crossings, params);
+        const long flips = untangle_pass(mesh, tree(), input, crossings, params);
         if (flips == 0) break;
         stats.flipped += flips;
         recount();
     }
     for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-        const long moves = move_pass(mesh, input, crossings, params);
+        const long moves = move_pass(mesh, tree(), input, crossings, params);
         if (moves == 0) break;
         stats.moved += moves;
         recount();
     }
     stats.crossings = std::move(crossings);
+    tree();
     return stats;
 }
 

@@ -43,15 +43,16 @@ struct UntangleStats {
     long flipped = 0; //!< edge flips
     long moved = 0;   //!< vertex moves
     std::vector<std::pair<int32_t, int32_t>> crossings; //!< what is left, as self_intersecting_pairs
-    //! AabbTree(mesh) of the mesh as left, which counted those, when a pass changed it; none
-    //! when none did (the mesh is as it came).
+    //! AabbTree(mesh) of the mesh as left: the one given, or made here.
     std::optional<AabbTree> tree;
 };
 
 //! Flips edges, then moves vertices, of the triangles in `crossings` (self_intersecting_pairs(mesh,
-//! ...)) as above, pass after pass while crossings are left and a pass changes something. Throws InvalidInput if
-//! the tolerance is not positive and finite, passes is negative, or an index is out of range.
+//! ...)) as above, pass after pass while crossings are left and a pass changes something.
+//! `mesh_tree`, if given, is AabbTree(mesh), which the first pass uses instead of making its own;
+//! the tree of the mesh as left comes back in stats.tree. Throws InvalidInput if the tolerance is
+//! not positive and finite, passes is negative, or an index is out of range.
 UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
-                       const UntangleParams& params);
+                       const UntangleParams& params, std::optional<AabbTree> mesh_tree = std::nullopt);
 
 } // namespace liftremesh
