@@ -1,8 +1,7 @@
 #include "liftremesh/neighbor_search.h"
 
 #include "liftremesh/exceptions.h"
-
-#include <nanoflann.hpp>
+#include "liftremesh/nanoflann_compat.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +22,65 @@ struct MatrixAdaptor {
     bool kdtree_get_bbox(Box&) const { return false; }
 };
 
+// The k nearest points strictly nearer than `bound`, closest first (equal distances in the order
+// the tree meets them). Until k are held the bound prunes the search, so a bound from a hint
+// cuts the nodes visited from the first step.
+class NearestSet {
+public:
+    using DistanceType = double;
+    using IndexType = int32_t;
+    NearestSet(int k, int32_t* indices, double* squared_distances, double bound)
+        : indices_(indices), dists_(squared_distances), capacity_(k) {
+        dists_[capacity_ - 1] = bound; // the worst distance until the set holds k points
+    }
+    bool addPoint(double dist, int32_t index) {
+        int i = count_;
+        for (; i > 0 && dists_[i - 1] > dist; --i) {
+            if (i < capacity_) {
+                dists_[i] = dists_[i - 1];
+                indices_[i] = indices_[i - 1];
+            }
+        }
+        if (i < capacity_) {
+            dists_[i] = dist;
+            indices_[i] = index;
+        }
+        if (count_ < capacity_) ++count_;
+        return true;
+    }
+    double worstDist() const { return dists_[capacity_ - 1]; }
+    bool full() const { return count_ == capacity_; }
+    size_t size() const { return static_cast<size_t>(count_); }
+    void sort() {} // kept sorted as points arrive
+
+private:
+    int32_t* indices_;
+    double* dists_;
+    int capacity_;
+    int count_ = 0;
+};
+
+// The points strictly nearer than a squared radius, with their squared distances, unordered.
+class WithinSet {
+public:
+    using DistanceType = double;
+    using IndexType = int32_t;
+    WithinSet(double squared_radius, std::vector<std::pair<int32_t, double>>& found)
+        : radius_(squared_radius), found_(found) {}
+    bool addPoint(double dist, int32_t index) {
+        if (dist < radius_) found_.emplace_back(index, dist);
+        return true;
+    }
+    double worstDist() const { return radius_; }
+    bool full() const { return true; }
+    size_t size() const { return found_.size(); }
+    void sort() {}
+
+private:
+    double radius_;
+    std::vector<std::pair<int32_t, double>>& found_;
+};
+
 struct TreeBase {
     virtual ~TreeBase() = default;
     virtual int knn(const double* q, int k, int32_t* idx, double* d2) const = 0;
@@ -40,13 +98,10 @@ struct Tree final : TreeBase {
     MatrixAdaptor adaptor;
     Index index;
     explicit Tree(const RowMatrix* m)
-        : adaptor{m}, index(D, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(12)) {
-        index.buildIndex();
-    }
+        : adaptor{m}, index(D, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(12)) {} // builds the index
     int knn(const double* q, int k, int32_t* idx, double* d2) const override {
-        nanoflann::KNNResultSet<double, int32_t> result(static_cast<size_t>(k));
-        result.init(idx, d2);
-        index.findNeighbors(result, q, nanoflann::SearchParams());
+        NearestSet result(k, idx, d2, std::numeric_limits<double>::max());
+        index.findNeighbors(result, q, nanoflann_compat::exact_search());
         return static_cast<int>(result.size());
     }
     int knn_hinted(const double* q, int k, int32_t* idx, double* d2, const int32_t* hint,
@@ -69,10 +124,8 @@ struct Tree final : TreeBase {
             // farthest hinted point too.
             bound = std::nextafter(bound, std::numeric_limits<double>::max());
         }
-        nanoflann::KNNResultSet<double, int32_t> result(static_cast<size_t>(k));
-        result.init(idx, d2);
-        d2[k - 1] = bound; // the set's worst distance until it holds k points
-        index.findNeighbors(result, q, nanoflann::SearchParams());
+        NearestSet result(k, idx, d2, bound);
+        index.findNeighbors(result, q, nanoflann_compat::exact_search());
         // Fewer than k within the bound: the hint repeated a point. Search without it.
         if (static_cast<int>(result.size()) < k && bound < std::numeric_limits<double>::max())
             return knn(q, k, idx, d2);
@@ -85,9 +138,8 @@ struct Tree final : TreeBase {
     }
     // Points at squared distance < r2, unordered, with that distance.
     void within_squared(const double* q, double r2, std::vector<std::pair<int32_t, double>>& found) const override {
-        nanoflann::SearchParams params;
-        params.sorted = false;
-        index.radiusSearch(q, r2, found, params);
+        WithinSet result(r2, found);
+        index.findNeighbors(result, q, nanoflann_compat::exact_search());
     }
 };
 

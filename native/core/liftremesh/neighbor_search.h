@@ -1,5 +1,5 @@
 // Nearest-neighbour search in R^d (d = 3 or 6) with a kd-tree (nanoflann). The only file pair
-// that includes nanoflann.
+// that includes nanoflann, through nanoflann_compat.h (Debian 12's 1.4.3 and Debian 13's 1.7.1).
 #pragma once
 
 #include <Eigen/Core>
