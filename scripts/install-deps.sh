@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages LiftRemesh needs to build, test, run the demo and the benchmark.
-# Idempotent: a machine that already has every package makes no apt call at all.
+# Installs the Debian packages LiftRemesh needs to build, test, run the demo and the benchmark,
+# on Debian 12 (FreeCAD 0.20.2) and Debian 13 (FreeCAD 1.0).
+# Idempotent: a machine that already has every package makes no network call at all.
 # Runs as root (CI) or through sudo when it is there.
 set -euo pipefail
 
@@ -16,8 +17,16 @@ packages=(
   python3-scipy     # FreeCAD tests: kd-trees for the exact Hausdorff distance (tests/freecad/mesh_checks.py)
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
-  calculix-ccx      # CalculiX solver: the FEM hand-off test runs a static shell analysis
   tetgen            # TetGen: tests fill remeshed surfaces with tetrahedra (tests/native/tetgen_test.cpp)
+)
+
+# Installed where the distribution has them; the tests that need one say they skipped without it.
+optional=(
+  calculix-ccx               # CalculiX solver: the FEM hand-off test runs a static shell analysis
+                             # (Debian 12 only: Debian 13 has no calculix-ccx)
+  python3-scikit-build-core  # `pip install .` without build isolation (Debian 13 only)
+  python3-pip                # the pip-installed module check (tests/freecad/check_pip_install.sh)
+  python3-venv
 )
 
 installed() {
@@ -25,13 +34,42 @@ installed() {
   [ "$(dpkg-query -W -f='${Status}' "$1" 2>/dev/null || true)" = "install ok installed" ]
 }
 
+available() {
+  # A candidate version in apt's lists (read locally, no network).
+  local candidate
+  candidate=$(apt-cache policy "$1" 2>/dev/null | awk '/Candidate:/ {print $2}')
+  [ -n "$candidate" ] && [ "$candidate" != "(none)" ]
+}
+
+have_lists() {
+  [ -n "$(find /var/lib/apt/lists -maxdepth 1 -name '*_Packages*' -print -quit 2>/dev/null)" ]
+}
+
 missing=()
 for p in "${packages[@]}"; do
   installed "$p" || missing+=("$p")
 done
+missing_optional=()
+for p in "${optional[@]}"; do
+  installed "$p" || missing_optional+=("$p")
+done
+
+# Optional packages the distribution does not have are left out (with a fresh list, not an
+# empty one, which would say every package is absent).
+absent=()
+if [ ${#missing_optional[@]} -gt 0 ] && have_lists; then
+  wanted=()
+  for p in "${missing_optional[@]}"; do
+    if available "$p"; then wanted+=("$p"); else absent+=("$p"); fi
+  done
+  missing_optional=("${wanted[@]+"${wanted[@]}"}")
+fi
+missing+=("${missing_optional[@]+"${missing_optional[@]}"}")
+not_here=""
+[ ${#absent[@]} -eq 0 ] || not_here=" (not in this distribution: ${absent[*]})"
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages present"
+  echo "install-deps: all packages present$not_here"
   exit 0
 fi
 
@@ -48,10 +86,21 @@ echo "install-deps: installing ${missing[*]}"
 apt_get() { "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q "$@" </dev/null; }
 updated=0
 # The package lists are empty on a fresh image: update once when apt cannot see the packages.
-if [ -z "$(find /var/lib/apt/lists -maxdepth 1 -name '*_Packages*' -print -quit 2>/dev/null)" ] \
-   || ! apt-cache show "${missing[@]}" >/dev/null 2>&1; then
+if ! have_lists || ! apt-cache show "${missing[@]}" >/dev/null 2>&1; then
   apt_get update
   updated=1
+  # Now that the lists are read, leave out the optional packages this distribution lacks.
+  keep=()
+  for p in "${missing[@]}"; do
+    if [[ " ${optional[*]} " == *" $p "* ]] && ! available "$p"; then
+      absent+=("$p")
+    else
+      keep+=("$p")
+    fi
+  done
+  missing=("${keep[@]+"${keep[@]}"}")
+  [ ${#absent[@]} -eq 0 ] || echo "install-deps: not in this distribution: ${absent[*]}"
+  [ ${#missing[@]} -gt 0 ] || { echo "install-deps: done"; exit 0; }
 fi
 # A stale list can name versions the mirror no longer has: update once and try again.
 if ! apt_get install -y --no-install-recommends "${missing[@]}"; then
