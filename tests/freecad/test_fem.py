@@ -33,6 +33,7 @@ import Part
 from femmesh import meshtools
 from femtools import ccxtools
 
+import fem_compat
 import LiftRemesh
 from LiftRemesh import fem
 
@@ -212,7 +213,7 @@ class FemShellTest(unittest.TestCase):
         """Static shell analysis: steel, THICKNESS, left edge fixed, FORCE along +x on the right."""
         doc = self.doc
         analysis = ObjectsFem.makeAnalysis(doc, "Analysis")
-        solver = ObjectsFem.makeSolverCalculixCcxTools(doc, "CalculiXccxTools")
+        solver = fem_compat.make_solver_ccx_tools(doc, "CalculiXccxTools")
         solver.AnalysisType = "static"
         solver.GeometricalNonlinearity = "linear"
         analysis.addObject(solver)
@@ -227,7 +228,7 @@ class FemShellTest(unittest.TestCase):
         analysis.addObject(fixed)
         force = ObjectsFem.makeConstraintForce(doc, "Force")
         force.References = [(self.plate, self.edges["right"])]
-        force.Force = FORCE
+        fem_compat.set_force(force, FORCE)
         force.Direction = (self.plate, [self.edges["bottom"]])
         force.Reversed = False
         analysis.addObject(force)
