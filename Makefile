@@ -1,7 +1,9 @@
 # LiftRemesh: every user-facing target first installs what is missing (scripts/install-deps.sh,
 # a no-op costing a tenth of a second when everything is there).
 #   make demo    remesh a FreeCAD-made bracket, print a quality summary
-#   make test    build and run the C++ test suite
+#   make test    build and run the C++ test suite and the FreeCAD tests
+#   make test-freecad1  the same in a Debian 13 root (FreeCAD 1.0), cached in ~/.cache/liftremesh,
+#                then the pip-installed module in FreeCAD (needs root)
 #   make bench   time the CLI on ../shared/meshes, print a markdown table
 #   make build   configure and build in build/ (Release)
 #   make install link the FreeCAD add-on into FreeCAD's user Mod folder (after building)
@@ -15,7 +17,7 @@ JOBS      ?= 2
 PYTHON    ?= /usr/bin/python3
 CLI       := $(BUILD_DIR)/bin/liftremesh
 
-.PHONY: all deps build test demo bench install uninstall clean
+.PHONY: all deps build test test-freecad1 demo bench install uninstall clean
 
 all: build
 
@@ -28,6 +30,9 @@ build: deps
 
 test: deps build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure
+
+test-freecad1:
+	JOBS=$(JOBS) bash scripts/test-freecad1.sh
 
 demo: deps build
 	@mkdir -p $(OUT_DIR)
