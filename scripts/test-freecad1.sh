@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds this checkout in a Debian 13 root (FreeCAD 1.0, Python 3.13, nanoflann 1.7) and runs the
-# whole suite there: `make test` (C++ and FreeCAD tests), then the pip-installed module check.
+# whole suite there: `make test` (C++ and FreeCAD tests), `make demo`, then the pip-installed
+# module check.
 #
 #   bash scripts/test-freecad1.sh          (what `make test-freecad1` runs; needs root)
 #
@@ -95,6 +96,8 @@ say "$(in_root sh -c 'grep PRETTY_NAME /etc/os-release; dpkg-query -W freecad-py
 say "$(in_root freecadcmd -c "import FreeCAD; print('FreeCAD.Version(): ' + ' '.join(FreeCAD.Version()[:4]))" 2>/dev/null | grep '^FreeCAD.Version' || echo 'FreeCAD does not start')"
 say "make test in the root"
 in_root make -C /work/main test
+say "make demo in the root"
+in_root make -C /work/main demo
 say "the module installed with pip, used by freecadcmd with no build tree"
 in_root bash /work/main/tests/freecad/check_pip_install.sh
 say "passed"
