@@ -93,7 +93,7 @@ in_root() {
 say "installing what is missing in the root"
 in_root bash /work/main/scripts/install-deps.sh
 say "$(in_root sh -c 'grep PRETTY_NAME /etc/os-release; dpkg-query -W freecad-python3 libnanoflann-dev python3' | tr '\n' ' ')"
-say "$(in_root freecadcmd -c "import FreeCAD; print('FreeCAD.Version(): ' + ' '.join(FreeCAD.Version()[:4]))" 2>/dev/null | grep '^FreeCAD.Version' || echo 'FreeCAD does not start')"
+say "$(in_root freecadcmd -c "import FreeCAD; v = FreeCAD.Version(); print('FreeCAD.Version(): ' + '.'.join(v[:3]) + (' revision ' + v[3] if v[3] else ''))" 2>/dev/null | grep '^FreeCAD.Version' || echo 'FreeCAD does not start')"
 say "make test in the root"
 in_root make -C /work/main test
 say "make demo in the root"
