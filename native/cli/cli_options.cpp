@@ -10,6 +10,24 @@ namespace liftremesh::cli {
 
 namespace {
 
+// --name-with-dashes of a parameter row.
+std::string option_of(const ParameterInfo& row) {
+    std::string flag = "--" + row.name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    return flag;
+}
+
+// The row whose option is `flag`, or nullptr.
+const ParameterInfo* row_of_option(const std::string& flag) {
+    for (const ParameterInfo& row : parameter_table())
+        if (option_of(row) == flag) return &row;
+    return nullptr;
+}
+
+[[noreturn]] void refuse(const std::string& option, const std::string& expected, const std::string& text) {
+    throw InvalidInput("option " + option + " expects " + expected + ", got '" + text + "'");
+}
+
 double parse_number(const std::string& option, const std::string& text) {
     size_t used = 0;
     double value = 0.0;
@@ -18,8 +36,7 @@ double parse_number(const std::string& option, const std::string& text) {
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used == 0 || used != text.size() || !std::isfinite(value))
-        throw InvalidInput("option " + option + " expects a number, got '" + text + "'");
+    if (used == 0 || used != text.size() || !std::isfinite(value)) refuse(option, "a number", text);
     return value;
 }
 
@@ -31,31 +48,63 @@ long long parse_integer(const std::string& option, const std::string& text) {
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used == 0 || used != text.size()) throw InvalidInput("option " + option + " expects an integer, got '" + text + "'");
+    if (used == 0 || used != text.size()) refuse(option, "an integer", text);
     return value;
 }
 
-int parse_int(const std::string& option, const std::string& text) {
-    const long long v = parse_integer(option, text);
-    if (v < -2147483647LL || v > 2147483647LL) throw InvalidInput("option " + option + " value '" + text + "' is too large");
-    return static_cast<int>(v);
+// Sets the parameter of `row` from its option's text, checked against the row's range (a given
+// value that replaces another parameter must be in range: its 0 only means "not given").
+void apply(RemeshParams& params, const ParameterInfo& row, const std::string& text) {
+    const std::string option = option_of(row);
+    switch (row.kind) {
+    case ParameterKind::Integer: {
+        const long long value = parse_integer(option, text);
+        if (!row.in_range(static_cast<double>(value))) refuse(option, row.expected(), text);
+        set_integer_parameter(params, row, value);
+        return;
+    }
+    case ParameterKind::Real: {
+        const double value = parse_number(option, text);
+        if (!row.in_range(value)) refuse(option, row.expected(), text);
+        set_parameter(params, row, value);
+        return;
+    }
+    case ParameterKind::Choice: {
+        const auto word = std::find(row.choices.begin(), row.choices.end(), text);
+        if (word == row.choices.end())
+            throw InvalidInput(row.name + " '" + text + "' is not known: expected " + row.expected());
+        set_parameter(params, row, static_cast<double>(word - row.choices.begin()));
+        return;
+    }
+    case ParameterKind::Flag: {
+        static const char* yes[] = {"yes", "true", "on", "1"};
+        static const char* no[] = {"no", "false", "off", "0"};
+        for (int i = 0; i < 4; ++i) {
+            if (text == yes[i]) return set_parameter(params, row, 1.0);
+            if (text == no[i]) return set_parameter(params, row, 0.0);
+        }
+        refuse(option, row.expected(), text);
+    }
+    }
 }
 
 } // namespace
 
 CliOptions parse_options(const std::vector<std::string>& args) {
     CliOptions o;
-    // The mode sets the defaults of nu and delta: find it first, then apply the other options.
-    Mode mode = Mode::Isotropic;
-    for (size_t i = 0; i < args.size(); ++i)
-        if (args[i] == "--mode") {
-            if (i + 1 >= args.size()) throw InvalidInput("option --mode expects a value");
-            mode = parse_mode(args[i + 1]);
-        }
-    o.params = RemeshParams::for_mode(mode);
+    // The mode sets the defaults of other parameters (nu and delta): find it first, then apply the
+    // other options over the defaults of that mode.
+    RemeshParams given_mode;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const ParameterInfo* row = row_of_option(args[i]);
+        if (row == nullptr || !std::holds_alternative<Mode RemeshParams::*>(row->field)) continue;
+        if (i + 1 >= args.size()) throw InvalidInput("option " + args[i] + " expects a value");
+        apply(given_mode, *row, args[i + 1]);
+    }
+    o.params = RemeshParams::for_mode(given_mode.mode);
 
     std::vector<std::string> positional;
-    bool vertices_given = false, edge_given = false;
+    std::vector<const ParameterInfo*> given;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "-h" || a == "--help") {
@@ -71,44 +120,21 @@ CliOptions parse_options(const std::vector<std::string>& args) {
             positional.push_back(a);
             continue;
         }
-        static const char* known[] = {"--vertices", "--edge-length", "--mode",       "--sigma", "--delta", "--nu",
-                                      "--eta",      "--iterations",  "--seed",       "--threads", "--report"};
-        bool is_known = false;
-        for (const char* k : known) is_known = is_known || a == k;
-        if (!is_known) throw InvalidInput("unknown option '" + a + "' (see --help)");
+        const ParameterInfo* row = row_of_option(a);
+        if (row == nullptr && a != "--report") throw InvalidInput("unknown option '" + a + "' (see --help)");
         if (i + 1 >= args.size()) throw InvalidInput("option " + a + " expects a value");
-        const std::string v = args[++i];
-        RemeshParams& p = o.params;
-        if (a == "--vertices") {
-            p.target_vertices = parse_int(a, v);
-            vertices_given = true;
-        } else if (a == "--edge-length") {
-            p.target_edge_length = parse_number(a, v);
-            if (!(p.target_edge_length > 0.0)) throw InvalidInput("option --edge-length expects a length > 0, got '" + v + "'");
-            edge_given = true;
-        } else if (a == "--mode") {
-            // already applied
-        } else if (a == "--sigma") {
-            p.sigma = parse_number(a, v);
-        } else if (a == "--delta") {
-            p.delta = parse_number(a, v);
-        } else if (a == "--nu") {
-            p.nu = parse_number(a, v);
-        } else if (a == "--eta") {
-            p.eta = parse_number(a, v);
-        } else if (a == "--iterations") {
-            p.iterations = parse_int(a, v);
-        } else if (a == "--seed") {
-            const long long s = parse_integer(a, v);
-            if (s < 0) throw InvalidInput("option --seed expects a non-negative integer, got '" + v + "'");
-            p.seed = static_cast<std::uint64_t>(s);
-        } else if (a == "--threads") {
-            p.threads = parse_int(a, v);
-        } else if (a == "--report") {
-            o.report_path = v;
+        const std::string& value = args[++i];
+        if (row == nullptr) {
+            o.report_path = value;
+            continue;
         }
+        apply(o.params, *row, value);
+        given.push_back(row);
     }
-    if (vertices_given && edge_given) throw InvalidInput("give either --vertices or --edge-length, not both");
+    for (const ParameterInfo* row : given)
+        for (const ParameterInfo* other : given)
+            if (row->replaces == other->name)
+                throw InvalidInput("give either " + option_of(*other) + " or " + option_of(*row) + ", not both");
     if (positional.size() != 2)
         throw InvalidInput("expected an input and an output file, got " + std::to_string(positional.size()) +
                            " file argument(s) (see --help)");
@@ -131,11 +157,8 @@ std::string usage() {
         flag.resize(std::max<size_t>(flag.size() + 1, 24), ' ');
         s << flag << help << "\n";
     };
-    for (const ParameterInfo& p : parameter_table()) {
-        std::string name = p.name;
-        std::replace(name.begin(), name.end(), '_', '-');
-        line("  --" + name + " " + p.metavar, p.help + " [" + p.default_text + "]");
-    }
+    for (const ParameterInfo& p : parameter_table())
+        line("  " + option_of(p) + " " + p.metavar, p.help + " [" + p.default_text + "]");
     line("  --report FILE.json", "write the quality report as JSON");
     line("  --quiet", "no progress output");
     line("  --help", "this text");

@@ -1,6 +1,6 @@
 // The Python module `liftremesh`: the core's remesh() on numpy arrays. The only C++ file that
-// includes pybind11. Parameter names, defaults and help come from the core's parameter_table()
-// and RemeshParams, so the CLI, this module and the FreeCAD workbench share one source of truth.
+// includes pybind11. Parameter names, kinds, ranges, defaults and help come from the core's
+// parameter_table(), so the CLI, this module and the FreeCAD workbench share one source of truth.
 #include "liftremesh/exceptions.h"
 #include "liftremesh/params.h"
 #include "liftremesh/pipeline.h"
@@ -12,9 +12,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace py = pybind11;
 using namespace liftremesh;
@@ -82,33 +85,58 @@ Triangles to_triangles(const py::handle& obj, Eigen::Index vertex_count) {
     return triangles;
 }
 
-template <typename T>
-void set_if(T& field, const std::optional<T>& value) {
-    if (value) field = *value;
+// A parameter's value as Python sees it: int, float, str (a choice's word), bool; None for a
+// parameter that replaces another and is not set (edge_length = 0).
+py::object to_python(const ParameterInfo& row, const RemeshParams& params) {
+    const double number = get_parameter(params, row);
+    if (!row.replaces.empty() && number == 0.0) return py::none();
+    if (row.kind == ParameterKind::Choice) return py::str(row.choices.at(static_cast<size_t>(number)));
+    return std::visit(
+        [&](auto member) -> py::object {
+            if constexpr (std::is_enum_v<std::remove_reference_t<decltype(params.*member)>>)
+                return py::none(); // a Choice, handled above
+            else
+                return py::cast(params.*member);
+        },
+        row.field);
+}
+
+// A bound of a range for Python: None where it is unbounded, an int for an Integer row.
+py::object bound(const ParameterInfo& row, double value) {
+    if (!std::isfinite(value)) return py::none();
+    if (row.kind == ParameterKind::Integer) return py::int_(static_cast<long long>(value));
+    return py::float_(value);
 }
 
 py::dict parameter_defaults(const std::string& mode) {
     const RemeshParams p = RemeshParams::for_mode(parse_mode(mode));
     py::dict d;
-    d["vertices"] = p.target_vertices;
-    d["edge_length"] = py::none();
-    d["mode"] = std::string(to_string(p.mode));
-    d["sigma"] = p.sigma;
-    d["delta"] = p.delta;
-    d["nu"] = p.nu;
-    d["eta"] = p.eta;
-    d["iterations"] = p.iterations;
-    d["seed"] = p.seed;
-    d["threads"] = p.threads;
-    d["fill_holes"] = p.fill_holes;
+    for (const ParameterInfo& row : parameter_table()) d[row.name.c_str()] = to_python(row, p);
     return d;
 }
 
 py::list parameter_list() {
+    const RemeshParams iso = RemeshParams::for_mode(Mode::Isotropic);
+    const RemeshParams aniso = RemeshParams::for_mode(Mode::Anisotropic);
     py::list rows;
     for (const ParameterInfo& info : parameter_table()) {
         py::dict row;
         row["name"] = info.name;
+        row["kind"] = to_string(info.kind);
+        row["min"] = bound(info, info.min);
+        row["max"] = bound(info, info.max);
+        row["min_open"] = info.min_open;
+        row["max_open"] = info.max_open;
+        row["replaces"] = info.replaces.empty() ? py::object(py::none()) : py::object(py::str(info.replaces));
+        row["choices"] = info.choices;
+        py::dict defaults;
+        defaults["isotropic"] = to_python(info, iso);
+        defaults["anisotropic"] = to_python(info, aniso);
+        row["defaults"] = defaults;
+        row["decimals"] = info.decimals;
+        row["step"] = info.kind == ParameterKind::Integer ? py::object(py::int_(static_cast<long long>(info.step)))
+                                                          : py::object(py::float_(info.step));
+        row["unit"] = info.unit;
         row["metavar"] = info.metavar;
         row["symbol"] = info.symbol;
         row["default"] = info.default_text;
@@ -118,31 +146,66 @@ py::list parameter_list() {
     return rows;
 }
 
-py::tuple remesh_arrays(const py::object& points_in, const py::object& triangles_in, std::optional<int> vertices,
-                        std::optional<double> edge_length, const std::string& mode, std::optional<double> sigma,
-                        std::optional<double> delta, std::optional<double> nu, std::optional<double> eta,
-                        std::optional<int> iterations, std::optional<std::uint64_t> seed, std::optional<int> threads,
-                        std::optional<bool> fill_holes, const py::object& progress) {
+// Sets one keyword argument of remesh() (not None) into `params`, converted as pybind converts a
+// typed argument: a TypeError for a value of the wrong type, InvalidInput (ValueError) out of range.
+void set_from_python(RemeshParams& params, const ParameterInfo& row, const py::handle& value) {
+    if (row.kind == ParameterKind::Choice) {
+        const auto word = py::cast<std::string>(value);
+        const auto it = std::find(row.choices.begin(), row.choices.end(), word);
+        if (it == row.choices.end())
+            throw InvalidInput(row.name + " '" + word + "' is not known: expected " + row.expected());
+        set_parameter(params, row, static_cast<double>(it - row.choices.begin()));
+        return;
+    }
+    std::visit(
+        [&](auto member) {
+            using T = std::remove_reference_t<decltype(params.*member)>;
+            if constexpr (!std::is_enum_v<T>) params.*member = py::cast<T>(value);
+        },
+        row.field);
+    // A given value of a parameter that replaces another must be in range: its 0 means "not set".
+    if (!row.replaces.empty() && !row.in_range(get_parameter(params, row))) {
+        std::ostringstream s;
+        s << row.name << " = " << get_parameter(params, row) << " is out of range: expected " << row.expected();
+        throw InvalidInput(s.str());
+    }
+}
+
+// set_from_python() with a value of the wrong type refused as pybind refuses a typed argument.
+void set_keyword(RemeshParams& params, const ParameterInfo& row, const py::handle& value) {
+    try {
+        set_from_python(params, row, value);
+    } catch (const py::cast_error&) {
+        throw py::type_error("remesh(): " + row.name + " must be of kind " + to_string(row.kind) + ", got " +
+                             std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+    }
+}
+
+py::tuple remesh_arrays(const py::object& points_in, const py::object& triangles_in, const py::object& progress,
+                        const py::kwargs& options) {
     Mesh input;
     input.points = to_points(points_in);
     input.triangles = to_triangles(triangles_in, input.points.rows());
 
-    RemeshParams params = RemeshParams::for_mode(parse_mode(mode));
-    if (vertices && edge_length) throw InvalidInput("give either vertices or edge_length, not both");
-    set_if(params.target_vertices, vertices);
-    if (edge_length) {
-        if (!(*edge_length > 0.0) || !std::isfinite(*edge_length))
-            throw InvalidInput("edge_length = " + std::to_string(*edge_length) + " is out of range: expected a length > 0");
-        params.target_edge_length = *edge_length;
+    // The mode first: it sets the defaults of other parameters (nu and delta).
+    RemeshParams given_mode;
+    std::vector<std::pair<const ParameterInfo*, py::handle>> given;
+    for (const auto& [key, value] : options) {
+        const std::string name = py::cast<std::string>(key);
+        const ParameterInfo* row = nullptr;
+        for (const ParameterInfo& r : parameter_table())
+            if (r.name == name) row = &r;
+        if (row == nullptr) throw py::type_error("remesh() got an unexpected keyword argument '" + name + "'");
+        if (value.is_none()) continue; // the default of the mode
+        if (std::holds_alternative<Mode RemeshParams::*>(row->field)) set_keyword(given_mode, *row, value);
+        given.emplace_back(row, value);
     }
-    set_if(params.sigma, sigma);
-    set_if(params.delta, delta);
-    set_if(params.nu, nu);
-    set_if(params.eta, eta);
-    set_if(params.iterations, iterations);
-    set_if(params.seed, seed);
-    set_if(params.threads, threads);
-    set_if(params.fill_holes, fill_holes);
+    RemeshParams params = RemeshParams::for_mode(given_mode.mode);
+    for (const auto& [row, value] : given) set_keyword(params, *row, value);
+    for (const auto& [row, value] : given)
+        for (const auto& [other, other_value] : given)
+            if (row->replaces == other->name)
+                throw InvalidInput("give either " + other->name + " or " + row->name + ", not both");
     params.validate();
     if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw InvalidInput("progress must be callable or None");
 
@@ -220,18 +283,15 @@ PYBIND11_MODULE(liftremesh, m) {
     });
 
     m.def("remesh", &remesh_arrays, py::arg("points"), py::arg("triangles"), py::kw_only(),
-          py::arg("vertices") = py::none(), py::arg("edge_length") = py::none(), py::arg("mode") = "isotropic",
-          py::arg("sigma") = py::none(), py::arg("delta") = py::none(), py::arg("nu") = py::none(),
-          py::arg("eta") = py::none(), py::arg("iterations") = py::none(), py::arg("seed") = py::none(),
-          py::arg("threads") = py::none(), py::arg("fill_holes") = py::none(), py::arg("progress") = py::none(),
+          py::arg("progress") = py::none(),
           R"doc(Remesh a triangle surface.
 
 points: (n, 3) float64 array of vertex positions.
 triangles: (m, 3) integer array of vertex indices (a soup is fine: exactly equal vertices are welded).
+Every parameter of parameters() by keyword (None = the default of the mode, see defaults(mode)):
 vertices / edge_length: target size (one of them; default: defaults()['vertices']).
 mode: "isotropic" (with local density) or "anisotropic"; sets the defaults of nu and delta.
-sigma, delta, nu, eta, iterations, seed, threads, fill_holes: None = the default of the mode
-(see defaults(mode) and parameters()).
+sigma, delta, nu, eta, iterations, seed, threads, fill_holes: see parameters().
 progress: None or a callable (stage, iteration, total, energy); returning False cancels, which
 raises liftremesh.Cancelled.
 
@@ -242,5 +302,9 @@ TopologyFailure (all subclasses of liftremesh.Error).)doc");
     m.def("defaults", &parameter_defaults, py::arg("mode") = "isotropic",
           "The default value of every parameter of remesh() for a mode, as a dict.");
     m.def("parameters", &parameter_list,
-          "One dict per parameter: name, metavar, symbol (the paper's), default (as text), help.");
+          "One dict per parameter of remesh(), in the core's table: name, kind ('integer', 'real', "
+          "'choice', 'flag'), min and max (None: unbounded), min_open and max_open (the end excluded), "
+          "replaces (the parameter a set value replaces, 0 meaning unset; or None), choices, defaults "
+          "({'isotropic': v, 'anisotropic': v}), decimals and step (for spin boxes), unit ('length', "
+          "'unit-ball' or ''), metavar, symbol (the paper's), default (as text), help.");
 }

@@ -45,6 +45,11 @@ protected:
         return p.string();
     }
     static long lines(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+    static std::string text_of(double v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    }
 };
 
 } // namespace
@@ -80,6 +85,25 @@ TEST_F(Cli, HelpDocumentsEveryOptionWithItsDefault) {
         EXPECT_NE(r.out.find("[" + p.default_text + "]"), std::string::npos) << p.name;
     }
     for (const char* flag : {"--report", "--quiet", "--help"}) EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+// Every row of the table is an option, parsed with the row's range: a value just outside it is
+// refused before any work, in one line naming the option and the value.
+TEST_F(Cli, EveryParameterIsAnOptionCheckedAgainstItsRange) {
+    const std::string in = sphere_off(), out = (dir / "o.stl").string();
+    for (const ParameterInfo& p : parameter_table()) {
+        std::string flag = "--" + p.name;
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        std::string bad = "maybe"; // a Choice's or a Flag's unknown word
+        if (p.kind == ParameterKind::Integer) bad = std::to_string(static_cast<long long>(p.min) - 1);
+        if (p.kind == ParameterKind::Real) bad = p.min_open ? text_of(p.min) : "-1e300";
+        const CliRun r = run(in + " " + out + " " + flag + " " + bad);
+        EXPECT_EQ(r.exit_code, 2) << flag << " " << bad << "\n" << r.err;
+        EXPECT_EQ(lines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(p.kind == ParameterKind::Choice ? p.name : flag), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("'" + bad + "'"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(Cli, BadInputIsOneLineOnStderrAndExitCode2) {

@@ -3,7 +3,10 @@
 #include "liftremesh/exceptions.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 namespace liftremesh {
 
@@ -17,51 +20,265 @@ Mode parse_mode(const std::string& text) {
 
 RemeshParams RemeshParams::for_mode(Mode mode) {
     RemeshParams p;
-    p.mode = mode;
-    if (mode == Mode::Anisotropic) { // Section 6.1
-        p.nu = 0.05;
-        p.delta = 0.0;
-    }
+    for (const ParameterInfo& row : parameter_table()) set_parameter(p, row, row.default_for(mode));
+    p.mode = mode; // the mode row's default is the default mode
     return p;
 }
 
-namespace {
-template <typename T>
-void require(bool ok, const char* field, T value, const char* expected) {
-    if (ok) return;
-    std::ostringstream s;
-    s << field << " = " << value << " is out of range: expected " << expected;
-    throw InvalidInput(s.str());
+const char* to_string(ParameterKind kind) {
+    switch (kind) {
+    case ParameterKind::Integer: return "integer";
+    case ParameterKind::Real: return "real";
+    case ParameterKind::Choice: return "choice";
+    case ParameterKind::Flag: return "flag";
+    }
+    return "?";
 }
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A number as the messages and --help show it: integers in full (20000000, not 2e+07).
+std::string number_text(double value, ParameterKind kind) {
+    std::ostringstream s;
+    if (kind == ParameterKind::Integer && std::abs(value) < 1e18)
+        s << static_cast<long long>(value);
+    else
+        s << value;
+    return s.str();
+}
+
+std::string value_text(const ParameterInfo& row, double value) {
+    switch (row.kind) {
+    case ParameterKind::Choice: return row.choices.at(static_cast<size_t>(value));
+    case ParameterKind::Flag: return value != 0.0 ? "yes" : "no";
+    default: break;
+    }
+    if (!row.replaces.empty() && value == 0.0) return "unset";
+    return number_text(value, row.kind);
+}
+
+// Builders of the rows below: the kind and the field, then what differs.
+struct Row {
+    ParameterInfo info;
+    Row(std::string name, ParameterKind kind, ParameterField field) {
+        info.name = std::move(name);
+        info.kind = kind;
+        info.field = field;
+    }
+    Row& range(double min, double max, bool min_open = false, bool max_open = false) {
+        info.min = min;
+        info.max = max;
+        info.min_open = min_open;
+        info.max_open = max_open;
+        return *this;
+    }
+    Row& anisotropic(double value) { // the isotropic default is RemeshParams' initializer
+        anisotropic_ = value;
+        return *this;
+    }
+    Row& replaces(std::string name) {
+        info.replaces = std::move(name);
+        return *this;
+    }
+    Row& choices(std::vector<std::string> words) {
+        info.choices = std::move(words);
+        return *this;
+    }
+    Row& spin(int decimals, double step) {
+        info.decimals = decimals;
+        info.step = step;
+        return *this;
+    }
+    Row& unit(std::string words) {
+        info.unit = std::move(words);
+        return *this;
+    }
+    Row& text(std::string metavar, std::string symbol, std::string help) {
+        info.metavar = std::move(metavar);
+        info.symbol = std::move(symbol);
+        info.help = std::move(help);
+        return *this;
+    }
+    std::optional<double> anisotropic_;
+};
+
+std::vector<ParameterInfo> build(std::vector<Row> rows) {
+    const RemeshParams initial;
+    std::vector<ParameterInfo> table;
+    for (Row& row : rows) {
+        ParameterInfo info = std::move(row.info);
+        info.isotropic_default = get_parameter(initial, info);
+        info.anisotropic_default = row.anisotropic_.value_or(info.isotropic_default);
+        info.default_text = value_text(info, info.isotropic_default);
+        if (info.anisotropic_default != info.isotropic_default)
+            info.default_text += " (isotropic), " + value_text(info, info.anisotropic_default) + " (anisotropic)";
+        table.push_back(std::move(info));
+    }
+    return table;
+}
+
+using K = ParameterKind;
+using P = RemeshParams;
+
 } // namespace
 
-void RemeshParams::validate() const {
-    require((target_vertices >= 4 && target_vertices <= kMaxVertices) || target_edge_length > 0.0, "vertices",
-            target_vertices, ("an integer in [4, " + std::to_string(kMaxVertices) + "]").c_str());
-    require(std::isfinite(target_edge_length) && target_edge_length >= 0.0, "edge_length", target_edge_length,
-            "a length > 0 (or 0 to use the vertex count)");
-    require(std::isfinite(sigma) && sigma >= 1.0 && sigma <= 100.0, "sigma", sigma, "a number in [1, 100]");
-    require(std::isfinite(delta) && delta >= 0.0 && delta <= 2.0, "delta", delta, "a number in [0, 2]");
-    require(std::isfinite(nu) && nu >= 0.0 && nu <= 1.0, "nu", nu, "a number in [0, 1]");
-    require(std::isfinite(eta) && eta > 0.0 && eta <= 0.5, "eta", eta, "a number in (0, 0.5]");
-    require(iterations >= 1 && iterations <= 100000, "iterations", iterations, "an integer in [1, 100000]");
-    require(threads >= 0 && threads <= 1024, "threads", threads, "an integer in [0, 1024] (0 = all cores)");
+const std::vector<ParameterInfo>& parameter_table() {
+    static const std::vector<ParameterInfo> table = build({
+        Row("vertices", K::Integer, &P::target_vertices)
+            .range(4, kMaxVertices)
+            .spin(0, 500)
+            .text("N", "", "target number of output vertices (sites), 4 to 20000000"),
+        Row("edge_length", K::Real, &P::target_edge_length)
+            .range(0, kInf, true)
+            .replaces("vertices")
+            .spin(3, 0.1)
+            .unit("length")
+            .text("H", "h", "target edge length in input units; replaces --vertices"),
+        Row("mode", K::Choice, &P::mode)
+            .choices({"isotropic", "anisotropic"})
+            .text("MODE", "", "isotropic (with local density) or anisotropic; sets nu and delta defaults"),
+        Row("sigma", K::Real, &P::sigma)
+            .range(1, 100)
+            .spin(2, 0.5)
+            .text("S", "sigma", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"),
+        Row("delta", K::Real, &P::delta)
+            .range(0, 2)
+            .anisotropic(0.0) // Section 6.1
+            .spin(3, 0.05)
+            .text("D", "delta", "exponent of the curvature density rho^delta"),
+        Row("nu", K::Real, &P::nu)
+            .range(0, 1)
+            .anisotropic(0.05) // Section 6.1
+            .spin(4, 0.005)
+            .unit("unit-ball")
+            .text("NU", "nu", "normal lifting scale, in unit-ball units"),
+        Row("eta", K::Real, &P::eta)
+            .range(0, 0.5, true)
+            .spin(3, 0.005)
+            .unit("unit-ball")
+            .text("ETA", "eta", "radius of the neighbourhood for vertex normals, in unit-ball units"),
+        Row("iterations", K::Integer, &P::iterations)
+            .range(1, 100000)
+            .spin(0, 10)
+            .text("K", "", "L-BFGS iterations (last 10%, at least 10, with sigma)"),
+        Row("seed", K::Integer, &P::seed)
+            .range(0, kInf)
+            .text("R", "", "seed of the random initial sampling"),
+        Row("threads", K::Integer, &P::threads)
+            .range(0, 1024)
+            .text("T", "", "worker threads (0 = all cores); the result does not depend on it"),
+        Row("fill_holes", K::Flag, &P::fill_holes)
+            .text("yes|no", "", "fill the holes of the result that the input does not have"),
+    });
+    return table;
 }
 
-const std::vector<ParameterInfo>& parameter_table() {
-    static const std::vector<ParameterInfo> table = {
-        {"vertices", "N", "", "6000", "target number of output vertices (sites), 4 to 20000000"},
-        {"edge_length", "H", "h", "unset", "target edge length in input units; replaces --vertices"},
-        {"mode", "MODE", "", "isotropic", "isotropic (with local density) or anisotropic; sets nu and delta defaults"},
-        {"sigma", "S", "sigma", "5", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"},
-        {"delta", "D", "delta", "0.4 (isotropic), 0 (anisotropic)", "exponent of the curvature density rho^delta"},
-        {"nu", "NU", "nu", "0.01 (isotropic), 0.05 (anisotropic)", "normal lifting scale, in unit-ball units"},
-        {"eta", "ETA", "eta", "0.02", "radius of the neighbourhood for vertex normals, in unit-ball units"},
-        {"iterations", "K", "", "100", "L-BFGS iterations (last 10%, at least 10, with sigma)"},
-        {"seed", "R", "", "1", "seed of the random initial sampling"},
-        {"threads", "T", "", "0", "worker threads (0 = all cores); the result does not depend on it"},
-    };
-    return table;
+const ParameterInfo& find_parameter(const std::string& name) {
+    std::string known;
+    for (const ParameterInfo& row : parameter_table()) {
+        if (row.name == name) return row;
+        known += (known.empty() ? "" : ", ") + row.name;
+    }
+    throw InvalidInput("unknown parameter '" + name + "': expected one of " + known);
+}
+
+bool ParameterInfo::in_range(double value) const {
+    if (kind != ParameterKind::Integer && kind != ParameterKind::Real) return true;
+    if (std::isnan(value) || std::isinf(value)) return false;
+    return (min_open ? value > min : value >= min) && (max_open ? value < max : value <= max);
+}
+
+std::string ParameterInfo::expected() const {
+    switch (kind) {
+    case ParameterKind::Choice: {
+        std::string words;
+        for (size_t i = 0; i < choices.size(); ++i)
+            words += (i == 0 ? "'" : i + 1 == choices.size() ? " or '" : ", '") + choices[i] + "'";
+        return words;
+    }
+    case ParameterKind::Flag: return "yes or no";
+    default: break;
+    }
+    std::string text = kind == ParameterKind::Integer ? "an integer" : "a number";
+    const bool low = std::isfinite(min), high = std::isfinite(max);
+    if (low && high)
+        text += std::string(" in ") + (min_open ? "(" : "[") + number_text(min, kind) + ", " + number_text(max, kind) +
+                (max_open ? ")" : "]");
+    else if (low)
+        text += (min_open ? " > " : " >= ") + number_text(min, kind);
+    else if (high)
+        text += (max_open ? " < " : " <= ") + number_text(max, kind);
+    return text;
+}
+
+double get_parameter(const RemeshParams& params, const ParameterInfo& row) {
+    return std::visit(
+        [&](auto member) {
+            if constexpr (std::is_enum_v<std::remove_reference_t<decltype(params.*member)>>)
+                return static_cast<double>(static_cast<int>(params.*member));
+            else
+                return static_cast<double>(params.*member);
+        },
+        row.field);
+}
+
+void set_parameter(RemeshParams& params, const ParameterInfo& row, double value) {
+    std::visit(
+        [&](auto member) {
+            using T = std::remove_reference_t<decltype(params.*member)>;
+            if constexpr (std::is_same_v<T, bool>)
+                params.*member = value != 0.0;
+            else if constexpr (std::is_enum_v<T> || std::is_integral_v<T>)
+                params.*member = static_cast<T>(std::llround(value));
+            else
+                params.*member = value;
+        },
+        row.field);
+}
+
+void set_integer_parameter(RemeshParams& params, const ParameterInfo& row, long long value) {
+    std::visit(
+        [&](auto member) {
+            using T = std::remove_reference_t<decltype(params.*member)>;
+            if constexpr (std::is_same_v<T, int>) {
+                if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
+                    throw InvalidInput(row.name + " = " + std::to_string(value) + " is out of range: expected " +
+                                       row.expected());
+                params.*member = static_cast<int>(value);
+            } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+                if (value < 0)
+                    throw InvalidInput(row.name + " = " + std::to_string(value) + " is out of range: expected " +
+                                       row.expected());
+                params.*member = static_cast<std::uint64_t>(value);
+            } else {
+                throw std::logic_error("set_integer_parameter: " + row.name + " is not an integer field");
+            }
+        },
+        row.field);
+}
+
+void RemeshParams::validate() const {
+    for (const ParameterInfo& row : parameter_table()) {
+        const double value = get_parameter(*this, row);
+        if (!row.replaces.empty() && value == 0.0) continue; // not set
+        // A parameter replaced by one that is set is not used.
+        bool replaced = false;
+        for (const ParameterInfo& other : parameter_table())
+            replaced = replaced || (other.replaces == row.name && get_parameter(*this, other) > 0.0);
+        if (replaced || row.in_range(value)) continue;
+        std::ostringstream s;
+        s << row.name << " = ";
+        std::visit(
+            [&](auto member) {
+                if constexpr (std::is_arithmetic_v<std::remove_reference_t<decltype(this->*member)>>) s << this->*member;
+            },
+            row.field);
+        s << " is out of range: expected " << row.expected();
+        if (!row.replaces.empty()) s << " (or 0 to use " << row.replaces << ")";
+        throw InvalidInput(s.str());
+    }
 }
 
 } // namespace liftremesh

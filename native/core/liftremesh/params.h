@@ -1,10 +1,13 @@
 // RemeshParams: every knob of the method, with its default, range and the paper's symbol.
-// This struct and `parameter_table()` are the single source of truth for the CLI's options and
-// --help, and for the Python module and FreeCAD workbench built on top of the core.
+// `parameter_table()` lists them, one row each (kind, range, per-mode default, help): the single
+// source of truth for validate(), the CLI's options and --help, and for the Python module and
+// FreeCAD workbench built on top of the core.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace liftremesh {
@@ -62,18 +65,76 @@ struct RemeshParams {
     //! The defaults of Section 6.1 for a mode (nu and delta depend on it).
     static RemeshParams for_mode(Mode mode);
 
-    //! Throws InvalidInput naming the field, its value and the accepted range.
+    //! Throws InvalidInput naming the field, its value and the accepted range (its table row's).
     void validate() const;
 };
 
-//! One row per user-facing parameter, for --help texts and bindings.
-struct ParameterInfo {
-    std::string name;       //!< snake_case field name (CLI: --name-with-dashes)
-    std::string metavar;    //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
-    std::string symbol;     //!< the paper's symbol, or "" if none
-    std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")
-    std::string help;       //!< one-line meaning
+//! What a parameter's value is.
+enum class ParameterKind {
+    Integer, //!< a whole number (int or std::uint64_t field)
+    Real,    //!< a finite floating-point number (double field)
+    Choice,  //!< one word of `choices` (an enum field; the index is the enum's value)
+    Flag     //!< yes or no (bool field)
 };
+const char* to_string(ParameterKind kind);
+
+//! The RemeshParams member a parameter row reads and writes.
+using ParameterField = std::variant<int RemeshParams::*, std::uint64_t RemeshParams::*, double RemeshParams::*,
+                                    Mode RemeshParams::*, bool RemeshParams::*>;
+
+//! One row per user-facing parameter: the one list of them. validate(), for_mode(), the CLI's
+//! options and --help, the Python module's keywords, defaults() and parameters(), and the FreeCAD
+//! properties and task panel are all read from it.
+struct ParameterInfo {
+    std::string name;    //!< snake_case name (CLI: --name-with-dashes; Python keyword; messages)
+    ParameterKind kind = ParameterKind::Real;
+    ParameterField field; //!< the member of RemeshParams that holds it
+    //! Accepted range of Integer and Real values; +-infinity where a side is unbounded. An open
+    //! end is excluded. Choice and Flag rows have no range (the whole line).
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    bool min_open = false;
+    bool max_open = false;
+    //! Non-empty: the name of the parameter this one replaces when it is set (> 0). Its value 0
+    //! means "not set" and is accepted besides the range; giving both is refused.
+    std::string replaces;
+    std::vector<std::string> choices; //!< Choice: the accepted words, in the enum's order
+    //! Default in each mode (Section 6.1), as a number: a Choice's index, a Flag's 0 or 1. The
+    //! isotropic one is the RemeshParams initializer's; for_mode() applies the anisotropic one.
+    double isotropic_default = 0.0;
+    double anisotropic_default = 0.0;
+    int decimals = 0;    //!< Real: digits a spin box shows; an editor keeps 10^-decimals off an open end
+    double step = 1.0;   //!< increment of a spin box
+    std::string unit;    //!< "length" (input units), "unit-ball" (units of the unit ball), or ""
+    std::string metavar; //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
+    std::string symbol;  //!< the paper's symbol, or "" if none
+    std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")
+    std::string help;    //!< one-line meaning
+
+    //! The default of a mode, as a number (see isotropic_default).
+    double default_for(Mode mode) const { return mode == Mode::Anisotropic ? anisotropic_default : isotropic_default; }
+    //! True when `value` lies in the range (a NaN or an infinity never does).
+    bool in_range(double value) const;
+    //! The accepted values in words: "an integer in [4, 20000000]", "a number in (0, 0.5]",
+    //! "a number > 0", "'isotropic' or 'anisotropic'".
+    std::string expected() const;
+};
+
+//! Every user-facing parameter, in --help order.
 const std::vector<ParameterInfo>& parameter_table();
+
+//! The row of that name; throws InvalidInput naming it and listing the known names otherwise.
+const ParameterInfo& find_parameter(const std::string& name);
+
+//! The field of `row` in `params`, as a number (a Choice's index, a Flag's 0 or 1).
+double get_parameter(const RemeshParams& params, const ParameterInfo& row);
+
+//! Sets the field of `row` in `params` from a number (a Choice's index, a Flag's 0 or 1), exactly
+//! for integers up to 2^53. No range check: validate() does it.
+void set_parameter(RemeshParams& params, const ParameterInfo& row, double value);
+
+//! Sets an Integer field exactly (a seed may exceed 2^53). The value must be >= 0 for an
+//! unsigned field and fit an int for an int field: InvalidInput naming the parameter otherwise.
+void set_integer_parameter(RemeshParams& params, const ParameterInfo& row, long long value);
 
 } // namespace liftremesh
