@@ -26,6 +26,24 @@ QUALITY_PROPERTIES = {
 }
 
 
+# The GUI gives a new feature its view provider through this one hook, set when LiftRemesh.gui is
+# imported (gui/__init__.py): App modules never import gui/, as FEM's ObjectsFem attaches its view
+# providers only when FreeCAD.GuiUp. Without the GUI (FreeCADCmd) no hook is set.
+_view_provider_hook = None
+
+
+def set_view_provider_hook(hook):
+    """Sets the callable hook(view_object) that attaches the view provider of new features."""
+    global _view_provider_hook
+    _view_provider_hook = hook
+
+
+def attach_view_provider(obj):
+    """Attaches the GUI's view provider to a new feature, when the GUI is up and has set the hook."""
+    if FreeCAD.GuiUp and _view_provider_hook is not None and getattr(obj, "ViewObject", None) is not None:
+        _view_provider_hook(obj.ViewObject)
+
+
 def _value(prop, value):
     """A parameter as stored in its property: an unset size (None) is 0, an int for Vertices and
     a length for EdgeLength (0 = use the other one)."""
@@ -168,10 +186,7 @@ def create_feature(doc, source, params, result=None):
     obj.Label = source.Label + " (remeshed)"
     set_params(obj, params)
     obj.Source = source
-    if FreeCAD.GuiUp:
-        from .gui import view_provider
-
-        view_provider.ViewProviderRemesh(obj.ViewObject)
+    attach_view_provider(obj)
     if result is None:
         obj.recompute()
         if not obj.isValid():

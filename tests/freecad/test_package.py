@@ -60,3 +60,32 @@ class PackageTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+def imported_modules(path):
+    """The modules a Python file imports, anywhere in it, as absolute names within LiftRemesh."""
+    import ast
+
+    with open(path, encoding="utf-8") as f:
+        tree = ast.parse(f.read(), path)
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = "LiftRemesh" if node.level else ""
+            module = ".".join(part for part in (base, node.module or "") if part)
+            names.add(module)
+            names.update(module + "." + alias.name for alias in node.names)
+    return names
+
+
+class LayersTest(unittest.TestCase):
+    def test_no_app_module_imports_the_gui(self):
+        """The App modules (LiftRemesh/*.py) never import LiftRemesh.gui, not even inside a function:
+        the GUI attaches the view provider through feature.set_view_provider_hook()."""
+        package = os.path.join(native.ADDON_ROOT, "freecad_workbench", "LiftRemesh")
+        for name in sorted(os.listdir(package)):
+            if name.endswith(".py"):
+                gui = sorted(m for m in imported_modules(os.path.join(package, name))
+                             if m == "LiftRemesh.gui" or m.startswith("LiftRemesh.gui.") or m == "FreeCADGui")
+                self.assertEqual(gui, [], "%s imports %s" % (name, ", ".join(gui)))

@@ -1,0 +1,7 @@
+"""The workbench's GUI half: commands, task panel, view provider. Importing it (the workbench does
+when it is activated; a saved document's view providers do when it opens) sets the App feature's
+view-provider hook: the App modules never import this package."""
+from .. import feature as _feature
+from . import view_provider as _view_provider
+
+_feature.set_view_provider_hook(_view_provider.ViewProviderRemesh)
