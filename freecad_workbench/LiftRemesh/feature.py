@@ -44,12 +44,21 @@ def attach_view_provider(obj):
         _view_provider_hook(obj.ViewObject)
 
 
-def _value(prop, value):
-    """A parameter as stored in its property: an unset size (None) is 0, an int for Vertices and
-    a length for EdgeLength (0 = use the other one)."""
+def _store(obj, name, value):
+    """Stores a parameter in its property, with the property's constraints (the table's range:
+    FreeCAD keeps no constraints in the document, they are set again on every store). An unset
+    edge length (None) is 0; an unset vertex count (replaced by the edge length) keeps its value."""
+    prop, kind, _ = parameters.properties()[name]
     if value is None:
-        return 0 if prop == "Vertices" else 0.0
-    return value
+        if name != parameters.size_names()[1]:
+            return
+        value = 0.0
+    if kind in parameters.CONSTRAINT_TYPES:
+        row = parameters.row(name)
+        low, high, step = parameters.editor_range(row)
+        number = int if row["kind"] == "integer" else float
+        value = (number(min(max(value, low), high)), number(low), number(high), number(step))
+    setattr(obj, prop, value)
 
 
 class StatelessProxy:
@@ -80,17 +89,24 @@ class RemeshFeature(StatelessProxy):
 
     @staticmethod
     def add_properties(obj, mode="isotropic"):
-        helps = parameters.help_texts()
+        """Adds the properties `obj` lacks, with the defaults of `mode`; a parameter stored with
+        another property type (an earlier version's App::PropertyInteger or PropertyFloat for a
+        constrained one) gets the table's type, keeping its value when it is in range."""
         defaults = parameters.defaults(mode)
         if "Source" not in obj.PropertiesList:
             obj.addProperty("App::PropertyLink", "Source", "Base", "the Part shape or mesh that is remeshed")
-        for name, (prop, kind, group) in parameters.PROPERTIES.items():
+        for name, (prop, kind, group) in parameters.properties().items():
+            value = defaults[name]
             if prop in obj.PropertiesList:
-                continue
-            obj.addProperty(kind, prop, group, helps.get(name, ""))
+                if obj.getTypeIdOfProperty(prop) == kind:
+                    continue
+                value = _stored_value(obj, name, defaults[name])
+                obj.removeProperty(prop)
+            row = parameters.row(name)
+            obj.addProperty(kind, prop, group, row["help"])
             if kind == "App::PropertyEnumeration":
-                setattr(obj, prop, list(parameters.MODES))
-            setattr(obj, prop, _value(prop, defaults[name]))
+                setattr(obj, prop, list(row["choices"]))
+            _store(obj, name, value)
         for prop, (kind, _, doc) in QUALITY_PROPERTIES.items():
             if prop not in obj.PropertiesList:
                 obj.addProperty(kind, prop, "Quality", doc)
@@ -100,8 +116,15 @@ class RemeshFeature(StatelessProxy):
     def onDocumentRestored(self, obj):
         # A document saved by an earlier version lacks the properties added since: they are added
         # and, for a quality figure, read from the stored report (-1 where it lacks the figure too).
+        # The constraints of the parameters' properties are not saved: they are set again.
         missing = [prop for prop in QUALITY_PROPERTIES if prop not in obj.PropertiesList]
+        touched = "Touched" in obj.State
         self.add_properties(obj, obj.Mode if "Mode" in obj.PropertiesList else "isotropic")
+        for name, (prop, kind, _) in parameters.properties().items():
+            if kind in parameters.CONSTRAINT_TYPES:
+                _store(obj, name, getattr(obj, prop))
+        if not touched:
+            obj.purgeTouched()  # opening a document asks for no recompute
         try:
             report = json.loads(obj.Report)
         except ValueError:
@@ -113,10 +136,13 @@ class RemeshFeature(StatelessProxy):
 
     def onChanged(self, obj, prop):
         # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.
-        if prop == "Mode" and "Restore" not in obj.State and "Nu" in obj.PropertiesList:
-            defaults = parameters.defaults(obj.Mode)
-            if obj.Nu != defaults["nu"] or obj.Delta != defaults["delta"]:
-                obj.Nu, obj.Delta = defaults["nu"], defaults["delta"]
+        properties = parameters.properties()
+        if prop != properties[parameters.MODE][0] or "Restore" in obj.State:
+            return
+        defaults = parameters.defaults(getattr(obj, prop))
+        for name in parameters.mode_dependent():
+            if properties[name][0] in obj.PropertiesList and getattr(obj, properties[name][0]) != defaults[name]:
+                _store(obj, name, defaults[name])
 
     def execute(self, obj):
         if obj.Source is None:
@@ -128,27 +154,40 @@ class RemeshFeature(StatelessProxy):
 def params_of(obj):
     """The parameter dict stored in a feature's properties."""
     values = {}
-    for name, (prop, kind, _) in parameters.PROPERTIES.items():
+    for name, (prop, kind, _) in parameters.properties().items():
         value = getattr(obj, prop)
         if hasattr(value, "Value"):  # Quantity (Length, Angle)
             value = value.Value
         values[name] = value
-    if values["edge_length"] > 0:
-        values["vertices"] = None
+    replaced, replacing = parameters.size_names()
+    if values[replacing] > 0:
+        values[replaced] = None
     else:
-        values["edge_length"] = None
-        if values["vertices"] == 0:
-            values["vertices"] = None  # neither set: the default count
+        values[replacing] = None
     return values
+
+
+def _stored_value(obj, name, default):
+    """A parameter's value in a property of an earlier version's type, or `default` when it is
+    outside the table's range (an earlier Vertices = 0 meant "the default count")."""
+    value = getattr(obj, parameters.properties()[name][0])
+    value = getattr(value, "Value", value)
+    row = parameters.row(name)
+    if row["kind"] not in ("integer", "real"):
+        return value
+    low, high, _ = parameters.editor_range(row)
+    if row["replaces"] and value == 0:
+        return None
+    return value if low <= value <= high else default
 
 
 def set_params(obj, params):
     """Stores a (resolved) parameter dict in a feature's properties."""
     values = parameters.resolve(params)
-    obj.Mode = values["mode"]  # first: a new mode resets nu and delta, set below
-    for name, (prop, _, _) in parameters.PROPERTIES.items():
-        if name != "mode":
-            setattr(obj, prop, _value(prop, values[name]))
+    _store(obj, parameters.MODE, values[parameters.MODE])  # first: a new mode resets nu and delta
+    for name in parameters.properties():
+        if name != parameters.MODE:
+            _store(obj, name, values[name])
 
 
 def apply_result(obj, result):
@@ -182,7 +221,7 @@ def create_feature(doc, source, params, result=None):
     beforehand, e.g. in a worker thread) its mesh is used as it is and the feature is not touched;
     otherwise the feature is computed now. Returns the feature."""
     obj = doc.addObject(FEATURE_TYPE, source.Name + "_Remesh")
-    RemeshFeature(obj, params.get("mode") or "isotropic")
+    RemeshFeature(obj, params.get(parameters.MODE) or parameters.modes()[0])
     obj.Label = source.Label + " (remeshed)"
     set_params(obj, params)
     obj.Source = source

@@ -1,38 +1,104 @@
-"""The remesh parameters as the add-on sees them: the module's own (names, defaults, help, from the
-C++ core's parameter table, the one source of truth shared with the CLI) plus the tessellation
-deflections used when the source is a Part shape.
+"""The remesh parameters as the add-on sees them: the rows of the C++ core's parameter table
+(liftremesh.parameters(): name, kind, range, per-mode defaults, help; the one source of truth shared
+with the command-line tool) plus the two rows of the tessellation used when the source is a Part
+shape, which are not core parameters.
 
 A parameter set is a plain dict {name: value}; `resolve()` fills in defaults and refuses unknown
-names. `PROPERTIES` maps each name to the property a parametric feature stores it in.
+names. `properties()` maps each name to the property a parametric feature stores it in, and
+`editor_range()` gives the bounds its property and its spin box accept.
 """
+import functools
+
 from . import native
 
 # Tessellation of Part shapes, as FreeCAD's STL export does it (MeshPart.meshFromShape with an
 # absolute linear deflection and an angular deflection): Preferences > Import-Export > Mesh formats
-# defaults to 0.1 mm and 30 degrees.
-TESSELLATION_DEFAULTS = {"linear_deflection": 0.1, "angular_deflection": 30.0}
-TESSELLATION_HELP = {
-    "linear_deflection": "tessellation of Part shapes: largest distance of the STL from the shape (mm)",
-    "angular_deflection": "tessellation of Part shapes: largest angle between neighbouring facets (degrees)",
-}
-MODES = ("isotropic", "anisotropic")
+# defaults to 0.1 mm and 30 degrees. Rows shaped as liftremesh.parameters() gives them.
+TESSELLATION = (
+    {"name": "linear_deflection", "kind": "real", "min": 0.0, "max": None, "min_open": True, "max_open": False,
+     "replaces": None, "choices": [], "defaults": {"isotropic": 0.1, "anisotropic": 0.1}, "decimals": 3,
+     "step": 0.01, "unit": "length",
+     "help": "tessellation of Part shapes: largest distance of the STL from the shape (mm)"},
+    {"name": "angular_deflection", "kind": "real", "min": 0.0, "max": None, "min_open": True, "max_open": False,
+     "replaces": None, "choices": [], "defaults": {"isotropic": 30.0, "anisotropic": 30.0}, "decimals": 1,
+     "step": 1.0, "unit": "angle",
+     "help": "tessellation of Part shapes: largest angle between neighbouring facets (degrees)"},
+)
+TESSELLATION_DEFAULTS = {row["name"]: row["defaults"]["isotropic"] for row in TESSELLATION}
+MODE = "mode"  # the parameter whose value selects the defaults of the others
 
-# name -> (property name, property type, group)
-PROPERTIES = {
-    "vertices": ("Vertices", "App::PropertyInteger", "Size"),
-    "edge_length": ("EdgeLength", "App::PropertyLength", "Size"),
-    "mode": ("Mode", "App::PropertyEnumeration", "Method"),
-    "sigma": ("Sigma", "App::PropertyFloat", "Method"),
-    "delta": ("Delta", "App::PropertyFloat", "Method"),
-    "nu": ("Nu", "App::PropertyFloat", "Method"),
-    "eta": ("Eta", "App::PropertyFloat", "Method"),
-    "iterations": ("Iterations", "App::PropertyInteger", "Method"),
-    "seed": ("Seed", "App::PropertyInteger", "Method"),
-    "threads": ("Threads", "App::PropertyInteger", "Method"),
-    "fill_holes": ("FillHoles", "App::PropertyBool", "Method"),
-    "linear_deflection": ("LinearDeflection", "App::PropertyLength", "Tessellation"),
-    "angular_deflection": ("AngularDeflection", "App::PropertyAngle", "Tessellation"),
-}
+# What a Qt spin box and FreeCAD's constraint properties hold: an int, and a bound for the unbounded.
+INT_LIMITS = (-2 ** 31, 2 ** 31 - 1)
+REAL_LIMIT = 1e9
+
+# A row's property: by kind, and for a real by its unit (a Length or an Angle has its own editor).
+PROPERTY_TYPES = {"integer": "App::PropertyIntegerConstraint", "real": "App::PropertyFloatConstraint",
+                  "choice": "App::PropertyEnumeration", "flag": "App::PropertyBool"}
+UNIT_PROPERTY_TYPES = {"length": "App::PropertyLength", "angle": "App::PropertyAngle"}
+CONSTRAINT_TYPES = ("App::PropertyIntegerConstraint", "App::PropertyFloatConstraint")
+
+
+@functools.lru_cache(maxsize=None)
+def rows():
+    """Every parameter's row: the module's table, then the tessellation's. A tuple of dicts."""
+    return tuple(native.load().parameters()) + TESSELLATION
+
+
+def row(name):
+    """The row of one parameter; KeyError for an unknown name."""
+    for r in rows():
+        if r["name"] == name:
+            return r
+    raise KeyError(name)
+
+
+def modes():
+    """The modes, in the table's order ("isotropic", "anisotropic")."""
+    return tuple(row(MODE)["choices"])
+
+
+def mode_dependent():
+    """The names of the parameters whose default depends on the mode (nu and delta)."""
+    return tuple(r["name"] for r in rows()
+                 if r["name"] != MODE and len({repr(v) for v in r["defaults"].values()}) > 1)
+
+
+def size_names():
+    """(replaced, replacing): the two parameters of the target size, ("vertices", "edge_length")."""
+    [replacing] = [r for r in rows() if r["replaces"]]
+    return replacing["replaces"], replacing["name"]
+
+
+def property_name(name):
+    """The property of a parameter: its name in CamelCase (edge_length -> EdgeLength)."""
+    return "".join(word.capitalize() for word in name.split("_"))
+
+
+def properties():
+    """name -> (property name, property type, group), for every row."""
+    size = size_names()
+    tessellation = {r["name"] for r in TESSELLATION}
+    result = {}
+    for r in rows():
+        kind = UNIT_PROPERTY_TYPES.get(r["unit"]) if r["kind"] == "real" else None
+        group = "Tessellation" if r["name"] in tessellation else "Size" if r["name"] in size else "Method"
+        result[r["name"]] = (property_name(r["name"]), kind or PROPERTY_TYPES[r["kind"]], group)
+    return result
+
+
+def editor_range(r):
+    """(lowest, highest, step) an editor (a spin box, a constraint property) accepts for a number
+    row: its range, an open end moved in by one unit of its last shown digit, an unbounded side by
+    what the editor can hold."""
+    if r["kind"] == "integer":
+        unit, (low, high) = 1, INT_LIMITS
+    else:
+        unit, (low, high) = 10.0 ** -r["decimals"], (-REAL_LIMIT, REAL_LIMIT)
+    if r["min"] is not None:
+        low = max(low, r["min"] + (unit if r["min_open"] else 0))
+    if r["max"] is not None:
+        high = min(high, r["max"] - (unit if r["max_open"] else 0))
+    return low, high, r["step"]
 
 
 def defaults(mode="isotropic"):
@@ -40,14 +106,6 @@ def defaults(mode="isotropic"):
     values = dict(native.load().defaults(mode))
     values.update(TESSELLATION_DEFAULTS)
     return values
-
-
-def help_texts():
-    """name -> one-line help, for tooltips."""
-    texts = {row["name"]: row["help"] for row in native.load().parameters()}
-    texts.setdefault("fill_holes", "fill the holes of the result that the input does not have")
-    texts.update(TESSELLATION_HELP)
-    return texts
 
 
 def resolve(params):
@@ -62,20 +120,21 @@ def resolve(params):
     if unknown:
         raise ValueError("unknown parameter%s %s; known: %s"
                          % ("s" if len(unknown) > 1 else "", ", ".join(map(repr, unknown)), ", ".join(sorted(known))))
-    mode = params.get("mode") or "isotropic"
-    if mode not in MODES:
-        raise ValueError("mode %r is not known: expected %s" % (mode, " or ".join(map(repr, MODES))))
-    if not params.get("edge_length"):
-        params.pop("edge_length", None)  # 0 (a feature's unset length) or None: use the vertex count
+    mode = params.get(MODE) or modes()[0]
+    if mode not in modes():
+        raise ValueError("mode %r is not known: expected %s" % (mode, " or ".join(map(repr, modes()))))
+    replaced, replacing = size_names()
+    if not params.get(replacing):
+        params.pop(replacing, None)  # 0 (a feature's unset length) or None: use the vertex count
     values = defaults(mode)
-    if params.get("edge_length"):
-        values["vertices"] = None
+    if params.get(replacing):
+        values[replaced] = None
     values.update({k: v for k, v in params.items() if v is not None})
-    if values.get("edge_length") is not None and values.get("vertices") is not None:
-        raise ValueError("give either vertices or edge_length, not both")
-    for name in TESSELLATION_DEFAULTS:
-        if not values[name] > 0:
-            raise ValueError("%s = %r is out of range: expected a number > 0" % (name, values[name]))
+    if values.get(replacing) is not None and values.get(replaced) is not None:
+        raise ValueError("give either %s or %s, not both" % (replaced, replacing))
+    for r in TESSELLATION:
+        if not values[r["name"]] > 0:
+            raise ValueError("%s = %r is out of range: expected a number > 0" % (r["name"], values[r["name"]]))
     return values
 
 

@@ -11,6 +11,7 @@ import Part
 
 import LiftRemesh
 from LiftRemesh import feature
+from LiftRemesh import native
 
 
 def snapshot(doc):
@@ -71,7 +72,9 @@ class DocumentTest(unittest.TestCase):
 
     def test_edge_length_target_is_stored_and_used(self):
         obj = LiftRemesh.remesh_objects(self.doc, [self.block], edge_length=2.0)[0]
-        self.assertEqual((obj.Vertices, obj.EdgeLength.Value), (0, 2.0))
+        self.assertEqual(obj.EdgeLength.Value, 2.0)
+        # the vertex count keeps a value in its range (issue 34) and is not used
+        self.assertEqual((feature.params_of(obj)["vertices"], obj.Vertices), (None, 6000))
         expected = self.block.Shape.Area / (3 ** 0.5 / 2 * 2.0 ** 2)
         self.assertAlmostEqual(obj.Mesh.CountPoints / expected, 1.0, delta=0.05)
         obj.EdgeLength = 3.0
@@ -199,6 +202,119 @@ class DocumentTest(unittest.TestCase):
         other.Vertices = 350
         self.doc.recompute()
         self.assertEqual(other.SelfIntersections, 0)  # counted by the new run
+
+
+# The property types of the parameters before they carried the table's ranges (issue 34).
+PLAIN_TYPES = {"integer": "App::PropertyInteger", "real": "App::PropertyFloat"}
+
+
+def constrained_rows():
+    """The module's rows whose property is a constraint one (numbers other than lengths)."""
+    return [row for row in native.load().parameters() if row["kind"] in PLAIN_TYPES and row["unit"] != "length"]
+
+
+def property_of(row):
+    return "".join(word.capitalize() for word in row["name"].split("_"))
+
+
+class PropertyRangeTest(unittest.TestCase):
+    """The parameters' properties refuse what the core refuses: their constraints (what FreeCAD's
+    property editor lets through, and what a value set from Python is clamped to) are the ranges
+    of the core's parameter table, also after a save and a reload."""
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("LiftRemeshPropertyTest")
+        self.block = block_with_hole(self.doc)
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def reload(self):
+        names = [obj.Name for obj in self.doc.Objects]
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "saved.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+        return [self.doc.getObject(name) for name in names]
+
+    def assert_constraints_are_the_table_ranges(self, obj):
+        for row in constrained_rows():
+            prop = property_of(row)
+            kind = "App::Property%sConstraint" % ("Integer" if row["kind"] == "integer" else "Float")
+            self.assertEqual(obj.getTypeIdOfProperty(prop), kind, prop)
+            saved = getattr(obj, prop)
+            setattr(obj, prop, -1e12 if row["kind"] == "real" else -2 ** 31)
+            low = getattr(obj, prop)
+            setattr(obj, prop, 1e12 if row["kind"] == "real" else 2 ** 31 - 1)
+            high = getattr(obj, prop)
+            setattr(obj, prop, saved)
+            for bound, end, is_open, inward in ((low, row["min"], row["min_open"], 1),
+                                               (high, row["max"], row["max_open"], -1)):
+                if end is None:  # unbounded: as far as the editor goes
+                    self.assertGreaterEqual(abs(bound), 1e9, prop)
+                elif not is_open:
+                    self.assertEqual(bound, end, prop)
+                else:  # one unit of the last digit shown inside the open end
+                    self.assertAlmostEqual(bound, end + inward * 10.0 ** -row["decimals"], 12, prop)
+            # both ends are values the core accepts
+            for value in (low, high if row["max"] is not None else low):
+                self.assertTrue(self.core_accepts(row["name"], value), (prop, value))
+
+    @staticmethod
+    def tetrahedron():
+        import numpy as np
+
+        return (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float),
+                np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+
+    def core_accepts(self, name, value):
+        """True unless the module refuses `value` for `name` as out of range."""
+        liftremesh = native.load()
+        try:
+            liftremesh.remesh(*self.tetrahedron(), **{name: value, "progress": lambda *_: False})
+        except liftremesh.Cancelled:
+            return True
+        except ValueError as error:
+            return "out of range" not in str(error)
+        return True
+
+    def test_constraints_are_the_table_ranges(self):
+        obj = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=300, iterations=10)[0]
+        self.assert_constraints_are_the_table_ranges(obj)
+        obj.Vertices = 3  # typed in the property editor: refused, the recompute does not fail
+        self.assertEqual(obj.Vertices, 4)
+        [_, obj] = self.reload()
+        self.assert_constraints_are_the_table_ranges(obj)
+
+    def test_a_document_saved_with_plain_property_types_opens(self):
+        by_count = LiftRemesh.remesh_objects(self.doc, [self.block], vertices=300, iterations=10)[0]
+        by_length = LiftRemesh.remesh_objects(self.doc, [self.block], edge_length=3.0, iterations=10)[0]
+        expected = {}
+        for obj in (by_count, by_length):  # as an earlier version saved them
+            for row in constrained_rows():
+                prop = property_of(row)
+                value, group = getattr(obj, prop), obj.getGroupOfProperty(prop)
+                obj.removeProperty(prop)
+                obj.addProperty(PLAIN_TYPES[row["kind"]], prop, group, row["help"])
+                setattr(obj, prop, value)
+            expected[obj.Name] = feature.params_of(obj)
+        by_length.Vertices = 0  # an earlier version's "no vertex count"
+        for obj in (by_count, by_length):
+            obj.purgeTouched()
+        counts = {obj.Name: obj.Mesh.CountPoints for obj in (by_count, by_length)}
+        [_, by_count, by_length] = self.reload()
+        for obj in (by_count, by_length):
+            self.assertNotIn("Touched", obj.State)  # opening a document does not ask for a recompute
+            self.assertEqual(feature.params_of(obj), expected[obj.Name])
+            self.assertEqual(obj.Mesh.CountPoints, counts[obj.Name])
+            self.assert_constraints_are_the_table_ranges(obj)
+        self.assertEqual(by_length.Vertices, 6000)  # the default count, unused beside the length
+        by_length.Iterations = 12
+        self.doc.recompute()
+        self.assertTrue(by_length.isValid())
+        self.assertEqual(feature.params_of(by_length)["iterations"], 12)
 
 
 if __name__ == "__main__":

@@ -193,6 +193,26 @@ class TaskPanelTest(GuiTestCase):
         self.assertGreater(values["edge_length"], 0.0)
         self.assertTrue(panel._widget("mode").toolTip())
 
+    def test_spin_boxes_take_the_table_ranges(self):
+        """Every number of the module's table has its spin box, bounded as the core bounds it (an
+        open end one unit of the last shown digit inside), as are the feature's properties."""
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block])
+        for row in native.load().parameters():
+            if row["kind"] not in ("integer", "real"):
+                continue
+            box = panel._widget(row["name"])
+            self.assertIsNotNone(box, row["name"])
+            unit = 1 if row["kind"] == "integer" else 10.0 ** -row["decimals"]
+            if row["kind"] == "real":
+                self.assertEqual(box.decimals(), row["decimals"], row["name"])
+            for shown, end, is_open, inward in ((box.minimum(), row["min"], row["min_open"], 1),
+                                                (box.maximum(), row["max"], row["max_open"], -1)):
+                if end is None:
+                    self.assertGreaterEqual(abs(shown), 1e9, row["name"])  # as far as the box goes
+                else:
+                    self.assertAlmostEqual(shown, end + (inward * unit if is_open else 0), 12, row["name"])
+
     def test_accept_inserts_one_mesh_feature_and_one_undo_removes_it(self):
         block = add_box_with_hole(self.doc)
         shape, volume, area = block.Shape, block.Shape.Volume, block.Shape.Area
@@ -236,7 +256,9 @@ class TaskPanelTest(GuiTestCase):
         self.assertEqual(outcome, "done", self.boxes.shown)
         feature = panel.created[0]
         self.assertAlmostEqual(feature.EdgeLength.Value, 1.5)
-        self.assertEqual(feature.Vertices, 0)
+        from LiftRemesh import feature as remesh_feature
+
+        self.assertIsNone(remesh_feature.params_of(feature)["vertices"])  # Vertices is not used
         self.assertGreater(feature.Mesh.CountPoints, 100)
 
     def test_a_remeshed_mesh_saves_and_reloads(self):

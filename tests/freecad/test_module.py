@@ -115,5 +115,26 @@ class ModuleTest(unittest.TestCase):
         self.assertIn("sigma", names)
 
 
+    def test_parameters_give_kind_range_and_the_defaults_of_each_mode(self):
+        rows = liftremesh.parameters()
+        self.assertEqual([row["name"] for row in rows], list(liftremesh.defaults()))  # fill_holes too
+        for row in rows:
+            self.assertIn(row["kind"], ("integer", "real", "choice", "flag"), row["name"])
+            for mode, value in row["defaults"].items():
+                self.assertEqual(value, liftremesh.defaults(mode)[row["name"]], (row["name"], mode))
+            if row["kind"] in ("integer", "real"):
+                self.assertIsNotNone(row["min"], row["name"])
+                if row["max"] is not None:
+                    self.assertLess(row["min"], row["max"], row["name"])
+        by_name = {row["name"]: row for row in rows}
+        self.assertEqual((by_name["eta"]["min"], by_name["eta"]["min_open"], by_name["eta"]["max"]), (0.0, True, 0.5))
+        self.assertEqual(by_name["mode"]["choices"], ["isotropic", "anisotropic"])
+        self.assertEqual(by_name["edge_length"]["replaces"], "vertices")
+        with self.assertRaises(TypeError):
+            liftremesh.remesh(self.points, self.triangles, vertexes=100)
+        with self.assertRaises(TypeError):
+            liftremesh.remesh(self.points, self.triangles, vertices=100.5)
+
+
 if __name__ == "__main__":
     unittest.main()

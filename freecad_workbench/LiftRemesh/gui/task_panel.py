@@ -30,9 +30,13 @@ from . import report_view
 
 UI_FILE = "remesh_task.ui"
 POLL_MS = 100
-# Parameters with a spin box of the same name in the form (vertices and edge_length apart).
-NUMBER_FIELDS = ("sigma", "delta", "nu", "eta", "iterations", "seed", "threads",
-                 "linear_deflection", "angular_deflection")
+
+
+def number_fields():
+    """The parameters with a spin box of the same name in the form, the target size apart (its two
+    fields go with the radio buttons that choose between them)."""
+    return tuple(row["name"] for row in parameters.rows()
+                 if row["kind"] in ("integer", "real") and row["name"] not in parameters.size_names())
 
 
 def button_flags(value):
@@ -285,15 +289,16 @@ class RemeshTaskPanel:
 
     def _setup(self):
         """Mode items, tooltips, signals, the sources line; hides the report until there is one."""
-        mode = self._widget("mode")
-        for name in parameters.MODES:
+        mode = self._widget(parameters.MODE)
+        for name in parameters.modes():
             mode.addItem(name.capitalize(), name)
-        texts = parameters.help_texts()
-        for name, text in texts.items():
-            for widget_name in (name, name + "_label", name + "_radio"):
+        for row in parameters.rows():
+            for widget_name in (row["name"], row["name"] + "_label", row["name"] + "_radio"):
                 widget = self._widget(widget_name)
                 if widget is not None:
-                    widget.setToolTip(text)
+                    widget.setToolTip(row["help"])
+            if row["kind"] in ("integer", "real"):
+                self._set_range(self._widget(row["name"]), row)
         mode.currentIndexChanged.connect(self._mode_changed)
         self._widget("vertices_radio").toggled.connect(self._size_kind_changed)
         self._widget("report_source").currentIndexChanged.connect(self._show_report)
@@ -305,18 +310,28 @@ class RemeshTaskPanel:
         self._widget("report_group").hide()
         self._widget("progress").setValue(0)
 
+    @staticmethod
+    def _set_range(spin_box, row):
+        """A spin box takes the range, step and decimals of its parameter's row."""
+        low, high, step = parameters.editor_range(row)
+        if row["kind"] == "real":
+            spin_box.setDecimals(row["decimals"])
+        spin_box.setRange(low, high)
+        spin_box.setSingleStep(step)
+
     def set_params(self, values):
         """Shows a parameter dict (as defaults() or params_of() give it) in the widgets."""
         values = dict(values)
-        mode = self._widget("mode")
+        mode = self._widget(parameters.MODE)
         mode.blockSignals(True)
-        mode.setCurrentIndex(max(0, mode.findData(values.get("mode") or parameters.MODES[0])))
+        mode.setCurrentIndex(max(0, mode.findData(values.get(parameters.MODE) or parameters.modes()[0])))
         mode.blockSignals(False)
-        for name in NUMBER_FIELDS:
+        for name in number_fields():
             if values.get(name) is not None:
                 self._widget(name).setValue(values[name])
-        if values.get("fill_holes") is not None:
-            self._widget("fill_holes").setChecked(bool(values["fill_holes"]))
+        for row in parameters.rows():
+            if row["kind"] == "flag" and values.get(row["name"]) is not None:
+                self._widget(row["name"]).setChecked(bool(values[row["name"]]))
         by_length = bool(values.get("edge_length"))
         self._widget("vertices_radio").blockSignals(True)
         self._widget("vertices_radio" if not by_length else "edge_length_radio").setChecked(True)
@@ -332,9 +347,11 @@ class RemeshTaskPanel:
 
     def params(self):
         """The parameter dict the widgets show (vertices or edge_length, the other None)."""
-        values = {"mode": self._widget("mode").currentData() or parameters.MODES[0],
-                  "fill_holes": self._widget("fill_holes").isChecked()}
-        for name in NUMBER_FIELDS:
+        values = {parameters.MODE: self._widget(parameters.MODE).currentData() or parameters.modes()[0]}
+        for row in parameters.rows():
+            if row["kind"] == "flag":
+                values[row["name"]] = self._widget(row["name"]).isChecked()
+        for name in number_fields():
             values[name] = self._widget(name).value()
         if self._widget("edge_length_radio").isChecked():
             values["vertices"], values["edge_length"] = None, self._widget("edge_length").value()
@@ -349,9 +366,9 @@ class RemeshTaskPanel:
 
     def _mode_changed(self, index):
         """A new mode brings its own nu and delta, as --mode does on the command line."""
-        mode = self._widget("mode").itemData(index)
+        mode = self._widget(parameters.MODE).itemData(index)
         defaults = parameters.defaults(mode)
-        for name in ("nu", "delta"):
+        for name in parameters.mode_dependent():
             self._widget(name).setValue(defaults[name])
 
     def _size_kind_changed(self, by_vertices):
