@@ -5,6 +5,7 @@
 #   make test-freecad1  the same in a Debian 13 root (FreeCAD 1.0), cached in ~/.cache/liftremesh,
 #                then the pip-installed module in FreeCAD (needs root)
 #   make bench   time the CLI on ../shared/meshes, print a markdown table
+#   make docs    write docs/cli.md and docs/report.md from the built CLI and module
 #   make build   configure and build in build/ (Release)
 #   make install link the FreeCAD add-on into FreeCAD's user Mod folder (after building)
 #   make uninstall remove that link
@@ -17,7 +18,7 @@ JOBS      ?= 2
 PYTHON    ?= /usr/bin/python3
 CLI       := $(BUILD_DIR)/bin/liftremesh
 
-.PHONY: all deps build test test-freecad1 demo bench install uninstall clean
+.PHONY: all deps build test test-freecad1 demo bench docs install uninstall clean
 
 all: build
 
@@ -44,6 +45,9 @@ demo: deps build
 
 bench: deps build
 	$(PYTHON) scripts/bench.py --cli $(CLI) --out $(OUT_DIR)/bench
+
+docs: deps build
+	$(PYTHON) scripts/gen_docs.py --build $(BUILD_DIR)
 
 install: deps build
 	bash scripts/install-addon.sh
