@@ -4,7 +4,7 @@
 #   make test    build and run the C++ test suite and the FreeCAD tests
 #   make test-freecad1  the same in a Debian 13 root (FreeCAD 1.0), cached in ~/.cache/liftremesh,
 #                then the pip-installed module in FreeCAD (needs root)
-#   make bench   time the CLI on ../shared/meshes, print a markdown table
+#   make bench   time the CLI on ../shared/meshes, write docs/results.md, then make docs
 #   make docs    write docs/cli.md and docs/report.md from the built CLI and module
 #   make build   configure and build in build/ (Release)
 #   make install link the FreeCAD add-on into FreeCAD's user Mod folder (after building)
@@ -44,7 +44,8 @@ demo: deps build
 	@echo "remeshed part: $(OUT_DIR)/demo_remeshed.stl (input $(OUT_DIR)/demo_part.stl)"
 
 bench: deps build
-	$(PYTHON) scripts/bench.py --cli $(CLI) --out $(OUT_DIR)/bench
+	$(PYTHON) scripts/bench.py --cli $(CLI) --out $(OUT_DIR)/bench --results docs/results.md
+	$(PYTHON) scripts/gen_docs.py --build $(BUILD_DIR)
 
 docs: deps build
 	$(PYTHON) scripts/gen_docs.py --build $(BUILD_DIR)

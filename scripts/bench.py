@@ -7,6 +7,10 @@ on a shared virtual machine the spread is the noise, the fastest run the closest
 program's own cost. The output (same seed) is the same every run.
 
     /usr/bin/python3 scripts/bench.py [--meshes DIR] [--cli PATH] [--out DIR] [--repeat N] [--only NAME ...]
+                                      [--results FILE.md]
+
+With --results (make bench: docs/results.md) it also writes the table as a page with the date,
+the commit measured and the commands: today's figures. Their history is that file's git log.
 
 Skips (exit 0) when the mesh folder is absent; exits 1 when a run fails.
 """
@@ -140,6 +144,68 @@ def sharp_ratio(report):
     return "%.4f" % (outside / inside)
 
 
+def commit_measured():
+    """The commit whose code was measured: HEAD, and a note when native/ or the build files
+    differ from it (a measurement of uncommitted code)."""
+    def git(*args):
+        proc = subprocess.run(["git", "-C", REPO] + list(args), capture_output=True, text=True)
+        return proc.stdout.strip() if proc.returncode == 0 else ""
+    head = git("rev-parse", "--short", "HEAD") or "unknown"
+    if git("status", "--porcelain", "--", "native", "CMakeLists.txt"):
+        head += " (with uncommitted changes to native/ or CMakeLists.txt)"
+    return head
+
+
+def load_average():
+    """The host's 1-minute load average (other work sharing the cores), or None."""
+    try:
+        return os.getloadavg()[0]
+    except OSError:
+        return None
+
+
+def results_page(rows, repeat, gauge_before, gauge_after, load_before=None, load_after=None):
+    """docs/results.md: today's table with its date, commit, host and commands."""
+    mesh_dir = "../shared/meshes"
+    lines = [
+        "# Results",
+        "",
+        "Written by `make bench` (`scripts/bench.py --results docs/results.md`); run it again rather",
+        "than edit this page. Earlier figures are this file's history: `git log -p docs/results.md`.",
+        "",
+        "- date: %s; commit measured: %s" % (time.strftime("%Y-%m-%d"), commit_measured()),
+        "- host: %d cores; gauge %.3f s before the runs, %.3f s after (a fixed single-threaded"
+        % (os.cpu_count(), gauge_before, gauge_after),
+        "  Python loop, `host_gauge` in `scripts/bench.py`: compare wall times only at similar readings);",
+        "  1-minute load average %s before, %s after (above the core count, other work shared them)"
+        % (fmt(load_before, ".1f"), fmt(load_after, ".1f")),
+        "- each case: the fastest of %d runs, the slowest run's wall time beside it; default" % repeat,
+        "  settings but `--vertices`, %d iterations, all cores. The quality figures do not depend on" % ITERATIONS,
+        "  the host or the number of threads; the times do.",
+        "",
+        "Commands (meshes from `%s`, not part of this repository):" % mesh_dir,
+        "",
+        "```sh",
+    ]
+    for row in rows:
+        lines.append("build/bin/liftremesh %s/%s out.%s --vertices %d --iterations %d --report report.json"
+                     % (mesh_dir, row["name"], row["name"].rsplit(".", 1)[-1], row["target"], ITERATIONS))
+    lines += [
+        "```",
+        "",
+        table(rows),
+        "",
+        "Columns: `sites` optimised; `evaluations` of the objective (line searches included); stage",
+        "seconds from the report's `timings`; wall time and peak resident memory from",
+        "`/usr/bin/time -v`; kappa (Eq. 26: 1 equilateral, 0 degenerate) min and mean of the output;",
+        "`sharp60`: total length of edges with a dihedral angle above 60 degrees, output over input;",
+        "Hausdorff: two-sided, relative to the input's bounding-box diagonal (a sampled lower bound);",
+        "chi: Euler characteristic. Every field is described in [report.md](report.md).",
+        "",
+    ]
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--meshes",
@@ -149,6 +215,8 @@ def main():
     parser.add_argument("--repeat", type=int, default=3, metavar="N",
                         help="runs per case; the fastest is shown (default 3)")
     parser.add_argument("--only", nargs="+", metavar="NAME", help="run only these mesh files")
+    parser.add_argument("--results", metavar="FILE.md",
+                        help="also write the table as a page with date, commit and commands")
     args = parser.parse_args()
 
     if not os.path.isdir(args.meshes):
@@ -159,6 +227,7 @@ def main():
         return 1
     os.makedirs(args.out, exist_ok=True)
 
+    load_before = load_average()
     gauge_before = host_gauge()
     rows = []
     for name, vertices in CASES:
@@ -170,12 +239,17 @@ def main():
         rows.append(best_of(args.cli, args.meshes, args.out, name, vertices, max(1, args.repeat)))
 
     gauge_after = host_gauge()
+    load_after = load_average()
     print("LiftRemesh benchmark: %d iterations, %d cores, %s" % (ITERATIONS, os.cpu_count(),
                                                                 time.strftime("%Y-%m-%d")))
     print("host gauge (scripts/bench.py host_gauge, lower is faster): %.3f s before, %.3f s after"
           % (gauge_before, gauge_after))
     print()
     print(table(rows))
+    if args.results and rows:
+        with open(args.results, "w") as f:
+            f.write(results_page(rows, max(1, args.repeat), gauge_before, gauge_after, load_before, load_after))
+        sys.stderr.write("bench: wrote %s\n" % args.results)
     return 1 if any("report" not in r for r in rows) else 0
 
 
