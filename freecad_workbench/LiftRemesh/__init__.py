@@ -42,3 +42,13 @@ def make_fem_shell(doc, mesh_obj, **kwargs):
     from . import fem
 
     return fem.make_fem_shell(doc, mesh_obj, **kwargs)
+
+
+# The package is the macro API's facade, as FEM's ObjectsFem is FEM's: with the GUI up it brings in
+# the GUI half, whose import sets feature.py's view-provider hook, so that a feature a macro makes
+# gets its view provider even before the workbench is first activated. The App modules (feature,
+# meshing, fem, parameters, document, native) never import gui/.
+import FreeCAD as _FreeCAD  # noqa: E402
+
+if _FreeCAD.GuiUp:
+    from . import gui as _gui  # noqa: E402,F401
