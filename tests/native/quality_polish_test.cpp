@@ -5,6 +5,7 @@
 // one on a crease is not; a closed surface keeps its topology, its orientation and its worst
 // triangle at least as good.
 #include "liftremesh/exceptions.h"
+#include "liftremesh/flip_rules.h"
 #include "liftremesh/quality.h"
 #include "liftremesh/quality_polish.h"
 #include "helpers.h"

@@ -3,7 +3,7 @@
 #include "liftremesh/acute_creases.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
-#include "liftremesh/quality_polish.h"
+#include "liftremesh/flip_rules.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,17 +13,6 @@
 #include <vector>
 
 namespace liftremesh {
-
-bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& q, double before, double after,
-                      double tolerance, double kappa_floor) {
-    if (!(before > tolerance && after < 0.5 * before)) return false;
-    const auto [n1, n2] = EditableMesh::flipped(q);
-    const Eigen::Vector3d mean = mesh.normal(mesh.tris[q.t1]).normalized() + mesh.normal(mesh.tris[q.t2]).normalized();
-    if (!(mean.squaredNorm() > 0.0)) return false; // a degenerate triangle (NaN) or opposite ones
-    if (mesh.normal(n1).dot(mean) <= 0.0 || mesh.normal(n2).dot(mean) <= 0.0) return false; // a fold
-    const double worst_before = std::min(mesh.kappa(mesh.tris[q.t1]), mesh.kappa(mesh.tris[q.t2]));
-    return std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(kappa_floor, worst_before);
-}
 
 namespace {
 

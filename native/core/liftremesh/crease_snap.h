@@ -28,7 +28,6 @@
 #pragma once
 
 #include "liftremesh/aabb_tree.h"
-#include "liftremesh/editable_mesh.h"
 #include "liftremesh/mesh.h"
 
 namespace liftremesh {
@@ -56,14 +55,6 @@ struct CreaseSnapStats {
     long moved = 0;   //!< vertices moved onto them
     long flipped = 0; //!< edges flipped with those moves
 };
-
-//! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
-//! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the
-//! input (`before`) and that of the other diagonal at most half as far (`after`), neither new
-//! triangle turns against the old pair's mean normal, and the worse kappa of the new pair is at
-//! least that of the old pair or `kappa_floor`.
-bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
-                      double tolerance, double kappa_floor);
 
 //! Moves vertices of `mesh` onto the acute creases of `input` (see above); `input_tree` is
 //! AabbTree(input). Keeps the mesh's orientation, manifoldness and Euler characteristic (vertex

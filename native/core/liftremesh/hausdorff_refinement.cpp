@@ -1,11 +1,10 @@
 #include "liftremesh/hausdorff_refinement.h"
 
 #include "liftremesh/aabb_tree.h"
-#include "liftremesh/crease_snap.h"
 #include "liftremesh/editable_mesh.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/geometry.h"
-#include "liftremesh/quality_polish.h"
+#include "liftremesh/flip_rules.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 // - folds: an edge whose two triangles turn by more than 90 degrees and reach farther from the
 //   input than the tolerance (on t13, seed 3: a triangle across the end of a wall thinner than
 //   the edge length, folded 157 degrees onto its neighbour, 0.74 from the input) is flipped when
-//   both new triangles lie on it (fold_flip_fits_input); a crease of the input, followed, is
+//   both new triangles lie on it (fold_flip_fits_input, flip_rules.h); a crease of the input, followed, is
 //   near it and left alone;
 // - caps, first: a triangle with an angle of 150 degrees or more, its apex near the opposite edge
 //   (three vertices along a crease joined across it: FreeCAD's inductor RLF_7030, seed 3, kappa
@@ -34,7 +34,7 @@
 #pragma once
 
 #include "liftremesh/aabb_tree.h"
-#include "liftremesh/editable_mesh.h"
+#include "liftremesh/mesh.h"
 
 namespace liftremesh {
 
@@ -57,50 +57,6 @@ struct QualityPolishStats {
     long unfolded = 0; //!< of those, the flips that undid a fold
     long moved = 0;    //!< vertex moves
 };
-
-//! Distances from the input of the midpoints of the quad's edge a-b (`before`) and of its other
-//! diagonal c-d (`after`): what the flip rules below weigh.
-struct DiagonalDistances {
-    double before, after;
-};
-DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input);
-
-//! Whether flipping the quad's edge is a quality flip that keeps the surface on the input
-//! (the first rule above); `input` is the input's tree, `tolerance` > 0.
-bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
-                                double tolerance);
-//! The same rule for a caller that measured the distances from the input of the midpoints of
-//! the quad's edge (`before`) and of the other diagonal (`after`) already.
-bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
-                                double tolerance);
-
-//! Whether flipping the quad's edge undoes a fold (the first rule above): its two triangles turn
-//! by more than 90 degrees and one of them is farther than `tolerance` from the input, both new
-//! ones lie on the input, their worse kappa at least the old pair's or 0.3. A triangle's
-//! distance is the largest of seven of its points (centroid, edge midpoints, halfway from the
-//! centroid to each corner); it lies on the input when that is within `tolerance` and its
-//! normal within 30 degrees of the input's triangle nearest to its centroid.
-bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
-                          double tolerance);
-
-//! Whether flipping the quad's edge removes a cap (the rule above, but for the turn from the
-//! cap's other neighbours, which the quad does not see): one of its two triangles, not both, has
-//! an angle of 150 degrees or more opposite the edge; both new ones lie on the input (as for a
-//! fold) and their worse kappa is above the old pair's.
-bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
-                         double tolerance);
-
-//! Largest distance from the input of seven points of the triangle: its centroid, its edges'
-//! midpoints and the points halfway from the centroid to its corners.
-double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
-
-//! triangle_distance_from_input, with the input's triangle nearest to the triangle's centroid
-//! (-1 if the input has none), whose query the distance shares.
-struct TriangleNearInput {
-    double distance;
-    int32_t nearest_to_centroid;
-};
-TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
 
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.

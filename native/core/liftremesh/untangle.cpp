@@ -3,7 +3,7 @@
 #include "liftremesh/compressed_rows.h"
 #include "liftremesh/editable_mesh.h"
 #include "liftremesh/exceptions.h"
-#include "liftremesh/quality_polish.h"
+#include "liftremesh/flip_rules.h"
 #include "liftremesh/self_intersection.h"
 
 #include <algorithm>
