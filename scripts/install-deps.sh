@@ -17,7 +17,7 @@ packages=(
   python3-scipy     # FreeCAD tests: kd-trees for the exact Hausdorff distance (tests/freecad/mesh_checks.py)
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
-  tetgen            # TetGen: tests fill remeshed surfaces with tetrahedra (tests/native/tetgen_test.cpp)
+  tetgen            # TetGen: tests fill remeshed surfaces with tetrahedra (tests/native/end_to_end/tetgen_test.cpp)
 )
 
 # Installed where the distribution has them; the tests that need one say they skipped without it.

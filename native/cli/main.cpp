@@ -2,7 +2,7 @@
 #include "cli_options.h"
 
 #include "liftremesh/exceptions.h"
-#include "liftremesh/mesh_io.h"
+#include "liftremesh/mesh/mesh_io.h"
 #include "liftremesh/pipeline.h"
 #include "liftremesh/report.h"
 

@@ -1,9 +1,9 @@
 // Small meshes built in code for the tests, and access to ../shared/meshes.
 #pragma once
 
-#include "liftremesh/mesh.h"
+#include "liftremesh/cvt/rvd.h"
+#include "liftremesh/mesh/mesh.h"
 #include "liftremesh/params.h"
-#include "liftremesh/rvd.h"
 
 #include <Eigen/Geometry>
 

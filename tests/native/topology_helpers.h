@@ -2,12 +2,13 @@
 // fans) so that the repair and hole-filling tests do not check the code with itself.
 #pragma once
 
-#include "liftremesh/geometry.h"
-#include "liftremesh/mesh.h"
+#include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/mesh.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -157,6 +158,54 @@ inline std::set<Eigen::Index> triangles_at(const Mesh& mesh, int32_t v) {
         for (int j = 0; j < 3; ++j)
             if (mesh.triangles(f, j) == v) out.insert(f);
     return out;
+}
+
+//! Boundary edges (used by one triangle), counted here from scratch.
+inline std::vector<std::pair<int32_t, int32_t>> boundary_edges_of(const Mesh& m) {
+    std::map<std::pair<int32_t, int32_t>, int> count;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = m.triangles(f, j), b = m.triangles(f, (j + 1) % 3);
+            ++count[{std::min(a, b), std::max(a, b)}];
+        }
+    std::vector<std::pair<int32_t, int32_t>> out;
+    for (const auto& [e, n] : count)
+        if (n == 1) out.push_back(e);
+    return out;
+}
+
+//! Vertices on boundary edges.
+inline std::set<int32_t> boundary_vertices_of(const Mesh& m) {
+    std::set<int32_t> out;
+    for (const auto& [a, b] : boundary_edges_of(m)) out.insert({a, b});
+    return out;
+}
+
+//! Largest distance from a boundary vertex of `output` to the boundary edges of `input`.
+inline double boundary_gap(const Mesh& output, const Mesh& input) {
+    const auto edges = boundary_edges_of(input);
+    double worst = 0.0;
+    for (int32_t v : boundary_vertices_of(output)) {
+        const Eigen::Vector3d p = output.points.row(v).transpose();
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& [a, b] : edges)
+            best = std::min(best, (closest_point_on_segment(p, input.points.row(a).transpose(),
+                                                            input.points.row(b).transpose()) - p).norm());
+        worst = std::max(worst, best);
+    }
+    return worst;
+}
+
+//! Distance from x to the nearest vertex of m.
+inline double distance_to_nearest_vertex(const Mesh& m, const Eigen::Vector3d& x) {
+    return (m.points.rowwise() - x.transpose()).rowwise().norm().minCoeff();
+}
+
+//! The unit triangle with an angle of `degrees` at the origin, between the x axis and the
+//! direction at `degrees` from it; its other corners are (1, 0) and that direction's unit point.
+inline Mesh acute_triangle(double degrees) {
+    const double a = degrees * M_PI / 180.0;
+    return make_mesh({{0, 0, 0}, {1, 0, 0}, {std::cos(a), std::sin(a), 0}}, {{0, 1, 2}});
 }
 
 } // namespace liftremesh::test

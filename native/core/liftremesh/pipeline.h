@@ -1,7 +1,7 @@
 // The remesher's entry point: Algorithm 3 from an input mesh to a clean output mesh and report.
 #pragma once
 
-#include "liftremesh/mesh.h"
+#include "liftremesh/mesh/mesh.h"
 #include "liftremesh/params.h"
 #include "liftremesh/progress.h"
 #include "liftremesh/report.h"

@@ -1,7 +1,7 @@
 // The report of a remesh run: quality of input and output, distance, timings; as JSON.
 #pragma once
 
-#include "liftremesh/quality.h"
+#include "liftremesh/measure/quality.h"
 
 #include <string>
 #include <vector>

@@ -1,0 +1,44 @@
+// The input's acute creases: its edges whose two triangles (a consistently oriented pair) turn
+// by more than a given angle, as segments, with the points where they end or meet, and the
+// nearest of them to a point found through samples along them. On a CAD tessellation a turn of
+// over 120 degrees between neighbours is a feature (a knife edge, an interior angle under 60
+// degrees), never a faceted smooth surface: the repair steps move vertices onto them
+// (crease_snap.h) and keep what stands for them (edge_collapse.h) without any tagging.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/neighbor_search.h"
+
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace liftremesh {
+
+class AcuteCreases {
+public:
+    //! The creases of `input` (input_tree is AabbTree(input)) turning by more than
+    //! `min_turn_deg`, sampled every `spacing` or closer for closest().
+    AcuteCreases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing);
+
+    //! The number of crease edges.
+    long size() const { return static_cast<long>(segments_.size()); }
+    //! Where a crease ends or meets others: its input vertices with other than two crease edges,
+    //! in lexicographic order.
+    const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
+    //! The closest point of a crease to p, if one lies within `radius`.
+    std::optional<Eigen::Vector3d> closest(const Eigen::Vector3d& p, double radius) const;
+
+private:
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments_;
+    std::vector<int32_t> sample_segment_;
+    std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
+    std::vector<Eigen::Vector3d> corners_;
+    std::optional<KdTree> tree_;
+    double spacing_ = 0.0;
+    mutable std::vector<int32_t> found_;
+};
+
+} // namespace liftremesh

@@ -1,0 +1,331 @@
+#include "liftremesh/edit/edge_collapse.h"
+
+#include "liftremesh/edit/acute_creases.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/geometry.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <iterator>
+#include <optional>
+#include <tuple>
+
+namespace liftremesh {
+
+namespace {
+
+struct Adjacency {
+    std::vector<std::vector<int32_t>> triangles_of; // per vertex, live triangles using it
+    std::vector<char> alive;                        // per triangle
+};
+
+Eigen::Vector3d position(const Mesh& m, int32_t v) { return m.points.row(v).transpose(); }
+
+double kappa_of(const Mesh& m, const std::array<int32_t, 3>& t) {
+    return triangle_kappa(position(m, t[0]), position(m, t[1]), position(m, t[2]));
+}
+
+std::array<int32_t, 3> corners(const Mesh& m, int32_t f) { return {m.triangles(f, 0), m.triangles(f, 1), m.triangles(f, 2)}; }
+
+// 2 pi minus the sum of the angles at v: zero on a flat or ruled (crease) surface, large at a corner.
+double angle_defect(const Mesh& m, const Adjacency& adj, int32_t v) {
+    double sum = 0.0;
+    for (int32_t f : adj.triangles_of[v]) {
+        const auto t = corners(m, f);
+        const int i = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+        const Eigen::Vector3d a = position(m, t[(i + 1) % 3]) - position(m, v);
+        const Eigen::Vector3d b = position(m, t[(i + 2) % 3]) - position(m, v);
+        sum += std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+    return std::abs(2.0 * M_PI - sum);
+}
+
+std::vector<int32_t> neighbours(const Mesh& m, const Adjacency& adj, int32_t v) {
+    std::vector<int32_t> out;
+    for (int32_t f : adj.triangles_of[v])
+        for (int32_t w : corners(m, f))
+            if (w != v) out.push_back(w);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// Tries to merge `gone` into `kept` (kept's position stays). Returns the smallest kappa of the
+// new fan, or -1 if the collapse is not allowed.
+double try_collapse(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t gone, double old_min) {
+    const Eigen::Vector3d p = position(m, kept);
+    double worst = 1.0;
+    for (int32_t f : adj.triangles_of[gone]) {
+        auto t = corners(m, f);
+        if (std::find(t.begin(), t.end(), kept) != t.end()) continue; // removed by the collapse
+        const Eigen::Vector3d before = triangle_normal(position(m, t[0]), position(m, t[1]), position(m, t[2]));
+        for (auto& v : t)
+            if (v == gone) v = kept;
+        Eigen::Vector3d q[3];
+        for (int j = 0; j < 3; ++j) q[j] = t[j] == kept ? p : position(m, t[j]);
+        const Eigen::Vector3d after = triangle_normal(q[0], q[1], q[2]);
+        if (after.dot(before) < std::cos(M_PI / 4)) return -1.0; // folds or turns too much
+        worst = std::min(worst, triangle_kappa(q[0], q[1], q[2]));
+    }
+    for (int32_t f : adj.triangles_of[kept]) {
+        const auto t = corners(m, f);
+        if (std::find(t.begin(), t.end(), gone) != t.end()) continue;
+        worst = std::min(worst, kappa_of(m, t));
+    }
+    return worst > old_min ? worst : -1.0;
+}
+
+// The collapses of one mesh: its triangles' fans and boundary kept up to date, triangles
+// marked dead, compacted by finish().
+class Collapser {
+public:
+    explicit Collapser(Mesh& mesh) : mesh_(mesh) {
+        const Eigen::Index nf = mesh.triangles.rows();
+        // On an open surface, an interior edge between two boundary vertices must stay:
+        // collapsing it joins the two boundaries at one vertex (the link condition with the
+        // boundary's virtual vertex).
+        on_boundary_.assign(static_cast<size_t>(mesh.points.rows()), 0);
+        for (const EdgeCount& e : edge_counts(mesh.triangles))
+            if (e.count == 1) on_boundary_[e.a] = on_boundary_[e.b] = 1;
+        adj_.triangles_of.resize(mesh.points.rows());
+        adj_.alive.assign(nf, 1);
+        for (Eigen::Index f = 0; f < nf; ++f)
+            for (int j = 0; j < 3; ++j) adj_.triangles_of[mesh.triangles(f, j)].push_back(static_cast<int32_t>(f));
+    }
+
+    //! Smallest kappa of the triangles around the given vertices.
+    double worst_kappa_around(std::initializer_list<int32_t> vertices) const {
+        double worst = 1.0;
+        for (int32_t v : vertices)
+            for (int32_t f : adj_.triangles_of[v]) worst = std::min(worst, kappa_of(mesh_, corners(mesh_, f)));
+        return worst;
+    }
+
+    //! The two live triangles of edge a-b, a -> b -> c and b -> a -> d (an oriented manifold
+    //! edge), as {f1, f2, c, d}; none otherwise.
+    std::optional<std::array<int32_t, 4>> quad(int32_t a, int32_t b) const {
+        std::array<int32_t, 4> q{-1, -1, -1, -1};
+        int found = 0;
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            const int i = t[0] == a ? 0 : t[1] == a ? 1 : 2;
+            if (t[(i + 1) % 3] == b) {
+                q[0] = f;
+                q[2] = t[(i + 2) % 3];
+            } else if (t[(i + 2) % 3] == b) {
+                q[1] = f;
+                q[3] = t[(i + 1) % 3];
+            } else {
+                continue;
+            }
+            ++found;
+        }
+        if (found != 2 || q[0] < 0 || q[1] < 0) return std::nullopt;
+        return q;
+    }
+
+    //! Whether a and b are joined by an edge.
+    bool joined(int32_t a, int32_t b) const {
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            if (std::find(t.begin(), t.end(), b) != t.end()) return true;
+        }
+        return false;
+    }
+
+    //! Flips edge a-b of quad {f1, f2, c, d} (see quad()) to c-d: (a, d, c) and (d, b, c), the
+    //! quad's orientation kept. Returns the two triangles as they were, for unflip().
+    std::array<std::array<int32_t, 3>, 2> flip(int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
+        const auto [f1, f2, c, d] = q;
+        const std::array<std::array<int32_t, 3>, 2> was = {corners(mesh_, f1), corners(mesh_, f2)};
+        mesh_.triangles.row(f1) << a, d, c;
+        mesh_.triangles.row(f2) << d, b, c;
+        drop(a, f2);
+        drop(b, f1);
+        adj_.triangles_of[c].push_back(f2);
+        adj_.triangles_of[d].push_back(f1);
+        return was;
+    }
+
+    //! Undoes flip(a, b, q), which returned `was`.
+    void unflip(int32_t a, int32_t b, const std::array<int32_t, 4>& q, const std::array<std::array<int32_t, 3>, 2>& was) {
+        const auto [f1, f2, c, d] = q;
+        for (int j = 0; j < 3; ++j) {
+            mesh_.triangles(f1, j) = was[0][j];
+            mesh_.triangles(f2, j) = was[1][j];
+        }
+        drop(c, f2);
+        drop(d, f1);
+        adj_.triangles_of[a].push_back(f2);
+        adj_.triangles_of[b].push_back(f1);
+    }
+
+    //! Collapses edge a-b onto one of its end points if that keeps an oriented manifold with the
+    //! same Euler characteristic (see collapse_short_edges) and the new fan's worst kappa is above
+    //! `must_beat`. Returns whether it did.
+    bool collapse(int32_t a, int32_t b, double must_beat) {
+        // The edge must still exist with exactly two triangles, whose opposite vertices are the
+        // only common neighbours of a and b (link condition: the collapse keeps a manifold).
+        std::vector<int32_t> shared, opposite;
+        for (int32_t f : adj_.triangles_of[a]) {
+            const auto t = corners(mesh_, f);
+            if (std::find(t.begin(), t.end(), b) == t.end()) continue;
+            shared.push_back(f);
+            for (int32_t v : t)
+                if (v != a && v != b) opposite.push_back(v);
+        }
+        if (shared.size() != 2 || opposite[0] == opposite[1]) return false;
+        if (on_boundary_[a] && on_boundary_[b]) return false;
+        const std::vector<int32_t> na = neighbours(mesh_, adj_, a), nb = neighbours(mesh_, adj_, b);
+        std::vector<int32_t> common;
+        std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
+        std::sort(opposite.begin(), opposite.end());
+        if (common != opposite) return false;
+        if (na.size() + nb.size() <= 6) return false; // would leave a degenerate (tetrahedron-like) piece
+        bool low_valence = false;                      // the opposite vertices lose an edge each
+        for (int32_t v : opposite) low_valence = low_valence || adj_.triangles_of[v].size() <= 3;
+        if (low_valence) return false;
+
+        const double keep_a = try_collapse(mesh_, adj_, a, b, must_beat);
+        const double keep_b = try_collapse(mesh_, adj_, b, a, must_beat);
+        if (keep_a < 0.0 && keep_b < 0.0) return false;
+        bool a_stays = keep_a >= 0.0;
+        if (keep_a >= 0.0 && keep_b >= 0.0) a_stays = angle_defect(mesh_, adj_, a) >= angle_defect(mesh_, adj_, b);
+        const int32_t kept = a_stays ? a : b, gone = a_stays ? b : a;
+
+        for (int32_t f : shared) {
+            adj_.alive[f] = 0;
+            for (int32_t v : corners(mesh_, f)) drop(v, f);
+        }
+        for (int32_t f : adj_.triangles_of[gone]) {
+            for (int j = 0; j < 3; ++j)
+                if (mesh_.triangles(f, j) == gone) mesh_.triangles(f, j) = kept;
+            adj_.triangles_of[kept].push_back(f);
+        }
+        adj_.triangles_of[gone].clear();
+        on_boundary_[kept] = on_boundary_[kept] || on_boundary_[gone];
+        ++collapsed_;
+        return true;
+    }
+
+    //! Removes the dead triangles and the vertices no triangle uses. Returns the collapses.
+    long finish() {
+        if (collapsed_ == 0) return 0;
+        const Eigen::Index nf = mesh_.triangles.rows();
+        Triangles kept_triangles(nf - 2 * collapsed_, 3);
+        Eigen::Index row = 0;
+        for (Eigen::Index f = 0; f < nf; ++f)
+            if (adj_.alive[f]) kept_triangles.row(row++) = mesh_.triangles.row(f);
+        mesh_.triangles = std::move(kept_triangles);
+        remove_unreferenced_vertices(mesh_);
+        return collapsed_;
+    }
+
+private:
+    void drop(int32_t v, int32_t f) {
+        auto& list = adj_.triangles_of[v];
+        list.erase(std::remove(list.begin(), list.end(), f), list.end());
+    }
+
+    Mesh& mesh_;
+    Adjacency adj_;
+    std::vector<char> on_boundary_;
+    long collapsed_ = 0;
+};
+
+} // namespace
+
+long collapse_short_edges(Mesh& mesh, double ratio) {
+    if (mesh.triangles.rows() == 0) return 0;
+    std::vector<EdgeCount> edges = edge_counts(mesh.triangles);
+    std::vector<double> lengths;
+    lengths.reserve(edges.size());
+    for (const EdgeCount& e : edges) lengths.push_back((position(mesh, e.a) - position(mesh, e.b)).norm());
+    std::vector<double> sorted = lengths;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double limit = ratio * sorted[sorted.size() / 2];
+
+    std::vector<std::tuple<double, int32_t, int32_t>> candidates;
+    for (size_t i = 0; i < edges.size(); ++i)
+        if (edges[i].count == 2 && lengths[i] < limit) candidates.emplace_back(lengths[i], edges[i].a, edges[i].b);
+    if (candidates.empty()) return 0;
+    std::sort(candidates.begin(), candidates.end());
+
+    Collapser collapser(mesh);
+    for (const auto& [length, a, b] : candidates) collapser.collapse(a, b, collapser.worst_kappa_around({a, b}));
+    return collapser.finish();
+}
+
+long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree, const FoldedPairParams& params) {
+    if (!(params.min_turn_deg > 90.0 && params.min_turn_deg < 180.0) || !(params.gap_ratio > 0.0 && params.gap_ratio < 1.0) ||
+        !(params.kappa_floor >= 0.0 && params.kappa_floor <= 1.0) ||
+        !(params.knife_turn_deg > 0.0 && params.knife_turn_deg < 180.0))
+        throw InvalidInput("collapse_folded_pairs: min_turn_deg must lie in (90, 180), gap_ratio in (0, 1), "
+                           "kappa_floor in [0, 1] and knife_turn_deg in (0, 180)");
+    check_indices(mesh, "folded pairs' mesh");
+    if (mesh.triangles.rows() == 0) return 0;
+    const double cos_turn = std::cos(params.min_turn_deg * M_PI / 180.0);
+    auto normal_of = [&](int32_t f) {
+        return triangle_normal(position(mesh, mesh.triangles(f, 0)), position(mesh, mesh.triangles(f, 1)),
+                               position(mesh, mesh.triangles(f, 2)));
+    };
+    // Whether triangle f faces against the input's triangle nearest to its centroid.
+    auto faces_against_input = [&](int32_t f) {
+        const Eigen::Vector3d centroid = (position(mesh, mesh.triangles(f, 0)) + position(mesh, mesh.triangles(f, 1)) +
+                                          position(mesh, mesh.triangles(f, 2))) / 3.0;
+        const ClosestPoint near = input_tree.closest(centroid);
+        return near.triangle >= 0 && normal_of(f).dot(input_tree.triangle_normal(near.triangle)) < 0.0;
+    };
+    // Whether the quad {f1, f2, c, d} of edge a-b (Collapser::quad) is a pair folded shut.
+    auto folded_shut = [&](int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
+        const auto [f1, f2, c, d] = q;
+        const Eigen::Vector3d n1 = normal_of(f1), n2 = normal_of(f2);
+        if (c == d || !(n1.dot(n2) < cos_turn * n1.norm() * n2.norm())) return false; // also for a zero normal
+        const double gap = (position(mesh, c) - position(mesh, d)).norm();
+        if (!(gap < params.gap_ratio * (position(mesh, a) - position(mesh, b)).norm())) return false;
+        return faces_against_input(f1) || faces_against_input(f2); // else a knife edge's, on the input
+    };
+
+    // The candidates from one scan of the edges; the collapser, which the rest needs, only for
+    // a mesh that has any (most have none).
+    std::vector<std::pair<int32_t, int32_t>> candidates;
+    const EdgeUses edges = edge_uses(mesh.triangles);
+    for (long e = 0; e < edges.size(); ++e) {
+        if (edges.count(e) != 2) continue;
+        const int32_t* use = edges.uses.begin(e);
+        if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) continue; // misoriented
+        // The first use runs a -> b -> c, the second b -> a -> d.
+        const int32_t f1 = use[0] / 3, j1 = use[0] % 3, f2 = use[1] / 3, j2 = use[1] % 3;
+        const int32_t a = mesh.triangles(f1, j1), b = mesh.triangles(f1, (j1 + 1) % 3);
+        if (folded_shut(a, b, {f1, f2, mesh.triangles(f1, (j1 + 2) % 3), mesh.triangles(f2, (j2 + 2) % 3)}))
+            candidates.emplace_back(a, b);
+    }
+    if (candidates.empty()) return 0;
+
+    // A pair within its edge's length of a knife edge of the input, whose two faces there are
+    // easily each other's nearest triangles, stands for it: kept. The creases sampled at the
+    // longest such edge, or a thousandth of the input's size if that is longer (a bound on the
+    // samples whatever the edges).
+    double spacing = 0.0;
+    for (const auto& [a, b] : candidates) spacing = std::max(spacing, (position(mesh, a) - position(mesh, b)).norm());
+    if (input.points.rows() > 0)
+        spacing = std::max(spacing, 1e-3 * (input.points.colwise().maxCoeff() - input.points.colwise().minCoeff()).norm());
+    const AcuteCreases knives(input, input_tree, params.knife_turn_deg, spacing);
+    Collapser collapser(mesh);
+    for (const auto& [a, b] : candidates) {
+        const auto q = collapser.quad(a, b); // as the collapses before this one left it
+        if (!q || !folded_shut(a, b, *q)) continue;
+        const Eigen::Vector3d pa = position(mesh, a), pb = position(mesh, b);
+        if (knives.closest(0.5 * (pa + pb), (pa - pb).norm())) continue;
+        const auto [f1, f2, c, d] = *q;
+        if (collapser.joined(c, d)) continue;
+        const double must_beat = std::min(collapser.worst_kappa_around({a, b, c, d}), params.kappa_floor);
+        const auto was = collapser.flip(a, b, *q);
+        if (!collapser.collapse(c, d, must_beat)) collapser.unflip(a, b, *q, was);
+    }
+    return collapser.finish();
+}
+
+} // namespace liftremesh

@@ -1,0 +1,61 @@
+// Edge collapses of the repair:
+// - the few very short edges the restricted Delaunay triangulation leaves where two sites crowd
+//   onto the same crease junction (the feature term pulls both there, Section 6.2.2);
+// - pairs folded shut: two triangles on an edge turned onto each other, their apexes close
+//   together (FreeCAD's chip resistor 1210_SMD, seed 1: an edge 0.086 long at a corner of the
+//   body, its triangles turning by 175 degrees, their apexes 0.003 apart; the inductor
+//   I22_2_5_16: 177 degrees, apexes 0.018 apart at an edge of 0.33). Neither triangle is far from
+//   the input, nor do they cross, so neither the fold flips of quality_polish.h nor untangle.h
+//   see them; a flip alone would leave two slivers. The edge is flipped and the short new edge
+//   between the apexes collapsed, which takes both triangles out and joins their apexes. Near a
+//   knife edge of the input (FreeCAD's connector TSM_104, seed 3: 172 degrees, apexes 12% of the
+//   edge apart, one of them on the knife edge) such a pair stands for it and is kept.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+
+namespace liftremesh {
+
+//! Collapses interior edges shorter than `ratio` times the median edge length, shortest first,
+//! each onto one of its two end points (no new position: vertices stay where the optimisation
+//! put them). A collapse is made only if it keeps the surface an oriented manifold with the same
+//! Euler characteristic (the link condition; on an open surface, no edge joining two boundary
+//! vertices through the inside), turns no triangle by more than 45 degrees, and
+//! raises the smallest kappa (Eq. 26) of the triangles around the edge. Of the two end points
+//! the more corner-like one (larger angle defect) is kept when both would do. Returns the
+//! number of collapses; unreferenced vertices are removed.
+long collapse_short_edges(Mesh& mesh, double ratio = 0.35);
+
+class AabbTree;
+
+struct FoldedPairParams {
+    //! The two triangles of an edge turn by more than this (degrees), in (90, 180): 150 is an
+    //! interior angle under 30 degrees.
+    double min_turn_deg = 150.0;
+    //! and their apexes lie closer together than this times the edge's length, in (0, 1). A
+    //! knife edge's apexes stand apart by 2 sin(beta / 2) times their distance from it (beta its
+    //! interior angle: 0.52 at 30 degrees); the pairs removed in the Idflibs survey are 0.04
+    //! to 0.21.
+    double gap_ratio = 0.25;
+    //! No triangle the collapse leaves has a kappa (Eq. 26) under this or under the worst of the
+    //! triangles around the four vertices before it, whichever is lower. In [0, 1].
+    double kappa_floor = 0.3;
+    //! A pair within its edge's length of an acute crease of the input (its triangles turning by
+    //! more than this, degrees, in (0, 180): acute_creases.h) is kept. The crease snap's 120.
+    double knife_turn_deg = 120.0;
+};
+
+//! Removes pairs folded shut (see above): an interior, oriented edge whose two triangles turn by
+//! more than params.min_turn_deg, whose apexes lie closer together than params.gap_ratio times
+//! its length, one of whose triangles faces against the input's triangle nearest to its centroid
+//! (a knife edge of the input, followed, has both on it) and which lies farther than its length
+//! from the input's acute creases (params.knife_turn_deg) is flipped to join the apexes, and that
+//! edge collapsed, under the rules of collapse_short_edges but for the kappa
+//! (params.kappa_floor); where the collapse is not allowed the flip is undone. `input_tree` is
+//! AabbTree(input). Each removal takes out two triangles and a vertex and keeps the Euler
+//! characteristic. Returns the removals; unreferenced vertices are removed. Throws InvalidInput
+//! if a parameter is out of range or an index is.
+long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
+                           const FoldedPairParams& params = {});
+
+} // namespace liftremesh

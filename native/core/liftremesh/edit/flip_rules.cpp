@@ -1,0 +1,111 @@
+#include "liftremesh/edit/flip_rules.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+// The distance part of the rule: the new diagonal's midpoint no farther from the input than the
+// old one's, or within half the tolerance.
+bool keeps_surface(double before, double after, double tolerance) { return after <= std::max(0.5 * tolerance, before); }
+
+// Seven points of the triangle, its centroid first, then its edges' midpoints and the points
+// halfway from the centroid to its corners (the corners themselves are vertices of the output,
+// put on the input).
+std::array<Eigen::Vector3d, 7> probe_points(const EditableMesh& mesh, const EditableMesh::Tri& t) {
+    const Eigen::Vector3d& a = mesh.points[t[0]];
+    const Eigen::Vector3d& b = mesh.points[t[1]];
+    const Eigen::Vector3d& c = mesh.points[t[2]];
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    return {g, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), 0.5 * (g + a), 0.5 * (g + b), 0.5 * (g + c)};
+}
+
+// The largest of `d2` and the squared distances from the input of points[first, 7).
+double farthest_squared(const std::array<Eigen::Vector3d, 7>& points, size_t first, double d2, const AabbTree& input) {
+    for (size_t i = first; i < points.size(); ++i) d2 = std::max(d2, input.closest(points[i]).squared_distance);
+    return d2;
+}
+
+// Within `tolerance` of the input (triangle_distance_from_input), its normal within 30 degrees of the
+// input's triangle nearest to its centroid (whose query serves both).
+bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input, double tolerance) {
+    const std::array<Eigen::Vector3d, 7> points = probe_points(mesh, t);
+    const ClosestPoint near = input.closest(points[0]);
+    return near.triangle >= 0 && EditableMesh::turns_little(mesh.normal(t), input.triangle_normal(near.triangle)) &&
+           std::sqrt(farthest_squared(points, 1, near.squared_distance, input)) <= tolerance;
+}
+} // namespace
+
+DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input) {
+    const std::vector<Eigen::Vector3d>& x = mesh.points;
+    auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };
+    return {distance(0.5 * (x[quad.a] + x[quad.b])), distance(0.5 * (x[quad.c] + x[quad.d]))};
+}
+
+double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    return std::sqrt(farthest_squared(probe_points(mesh, t), 0, 0.0, input));
+}
+
+TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    const std::array<Eigen::Vector3d, 7> points = probe_points(mesh, t);
+    const ClosestPoint near = input.closest(points[0]);
+    return {std::sqrt(farthest_squared(points, 1, near.squared_distance, input)), near.triangle};
+}
+
+bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                          double tolerance) {
+    const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
+    const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
+    if (!(mesh.normal(t1).dot(mesh.normal(t2)) < 0.0)) return false; // turns by 90 degrees at most
+    if (!(std::max(triangle_distance_from_input(mesh, t1, input), triangle_distance_from_input(mesh, t2, input)) > tolerance))
+        return false; // near the input: a crease of it, followed, or a fold too small to matter
+    const auto [n1, n2] = EditableMesh::flipped(quad);
+    const double worse_before = std::min(mesh.kappa(t1), mesh.kappa(t2));
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(worse_before, 0.3))) return false;
+    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+}
+
+bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                         double tolerance) {
+    const std::vector<Eigen::Vector3d>& x = mesh.points;
+    // The cosine of the angle at `apex` of the triangle it makes with the quad's edge a-b.
+    auto cos_at = [&](int32_t apex) {
+        const Eigen::Vector3d u = x[quad.a] - x[apex], v = x[quad.b] - x[apex];
+        return u.dot(v) / (u.norm() * v.norm());
+    };
+    if ((cos_at(quad.c) <= kCosCap) == (cos_at(quad.d) <= kCosCap)) return false; // one cap on the edge, not two
+    const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
+    const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
+    const auto [n1, n2] = EditableMesh::flipped(quad);
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) > std::min(mesh.kappa(t1), mesh.kappa(t2)))) return false;
+    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+}
+
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                                double tolerance) {
+    if (!mesh.flip_improves_quality(quad)) return false; // first: it spares the two distance queries
+    const auto [before, after] = diagonal_distances(mesh, quad, input);
+    return keeps_surface(before, after, tolerance);
+}
+
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                                double tolerance) {
+    return mesh.flip_improves_quality(quad) && keeps_surface(before, after, tolerance);
+}
+
+bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& q, double before, double after,
+                      double tolerance, double kappa_floor) {
+    if (!(before > tolerance && after < 0.5 * before)) return false;
+    const auto [n1, n2] = EditableMesh::flipped(q);
+    const Eigen::Vector3d mean = mesh.normal(mesh.tris[q.t1]).normalized() + mesh.normal(mesh.tris[q.t2]).normalized();
+    if (!(mean.squaredNorm() > 0.0)) return false; // a degenerate triangle (NaN) or opposite ones
+    if (mesh.normal(n1).dot(mean) <= 0.0 || mesh.normal(n2).dot(mean) <= 0.0) return false; // a fold
+    const double worst_before = std::min(mesh.kappa(mesh.tris[q.t1]), mesh.kappa(mesh.tris[q.t2]));
+    return std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(kappa_floor, worst_before);
+}
+
+} // namespace liftremesh

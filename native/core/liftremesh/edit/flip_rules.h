@@ -1,0 +1,71 @@
+// The tests that decide whether an edge flip may be made on a surface that must stay on the
+// input: the rules the repair's steps (crease snap, Hausdorff refinement, quality polish,
+// untangling) share, each weighing a quad of EditableMesh against the input's tree. A flip
+// changes which diagonal splits the quad; the rules ask that the new triangles be no worse
+// (kappa, Eq. 26), not turned over, and no farther from the input than the old ones, measured
+// at the diagonals' midpoints or at seven points of each triangle.
+#pragma once
+
+#include "liftremesh/mesh/editable_mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+#include <cmath>
+
+namespace liftremesh {
+
+//! The cosine of a cap's angle at its apex: a cap has an angle of 150 degrees or more.
+inline const double kCosCap = -std::sqrt(3.0) / 2.0;
+
+//! Distances from the input of the midpoints of the quad's edge a-b (`before`) and of its other
+//! diagonal c-d (`after`): what the rules below weigh.
+struct DiagonalDistances {
+    double before, after;
+};
+DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input);
+
+//! Whether flipping the quad's edge is a quality flip that keeps the surface on the input
+//! (quality_polish.h: the flips); `input` is the input's tree, `tolerance` > 0.
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                                double tolerance);
+//! The same rule for a caller that measured the distances from the input of the midpoints of
+//! the quad's edge (`before`) and of the other diagonal (`after`) already.
+bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                                double tolerance);
+
+//! Whether flipping the quad's edge undoes a fold (quality_polish.h: the flips): its two triangles turn
+//! by more than 90 degrees and one of them is farther than `tolerance` from the input, both new
+//! ones lie on the input, their worse kappa at least the old pair's or 0.3. A triangle's
+//! distance is the largest of seven of its points (centroid, edge midpoints, halfway from the
+//! centroid to each corner); it lies on the input when that is within `tolerance` and its
+//! normal within 30 degrees of the input's triangle nearest to its centroid.
+bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                          double tolerance);
+
+//! Whether flipping the quad's edge removes a cap (the rule above, but for the turn from the
+//! cap's other neighbours, which the quad does not see): one of its two triangles, not both, has
+//! an angle of 150 degrees or more opposite the edge; both new ones lie on the input (as for a
+//! fold) and their worse kappa is above the old pair's.
+bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
+                         double tolerance);
+
+//! Largest distance from the input of seven points of the triangle: its centroid, its edges'
+//! midpoints and the points halfway from the centroid to its corners.
+double triangle_distance_from_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
+//! triangle_distance_from_input, with the input's triangle nearest to the triangle's centroid
+//! (-1 if the input has none), whose query the distance shares.
+struct TriangleNearInput {
+    double distance;
+    int32_t nearest_to_centroid;
+};
+TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
+//! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
+//! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the
+//! input (`before`) and that of the other diagonal at most half as far (`after`), neither new
+//! triangle turns against the old pair's mean normal, and the worse kappa of the new pair is at
+//! least that of the old pair or `kappa_floor`.
+bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                      double tolerance, double kappa_floor);
+
+} // namespace liftremesh

@@ -1,0 +1,23 @@
+// Vertex normals on geometric neighbourhoods (Section 5.2.1) and the normal lifting of the
+// surface to R^6 (Eq. 12).
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+
+namespace liftremesh {
+
+//! #V by 3 unit vertex normals. Each vertex averages the normals of the triangles within
+//! distance eta of it, weighted by the area of triangle and ball (radius eta) intersection
+//! (Section 5.2.1), so triangles that touch the vertex only geometrically (across a gap or a
+//! T-junction) count as much as connected ones. Triangles facing away from the vertex's own
+//! one-ring normal by more than 120 degrees (the far side of a thin wall) are left out.
+//! A vertex with no such triangle keeps its one-ring (area-weighted) normal.
+Points vertex_normals(const Mesh& mesh, double eta);
+
+//! #V by d lifted points x (+) nu n (Eq. 12): d = 6, or d = 3 (the plain surface) when nu == 0.
+LiftedPoints lift(const Points& points, const Points& normals, double nu);
+
+//! The same with a scale per vertex, x (+) nu_v n (#V values, thin_walls.h): always d = 6.
+LiftedPoints lift(const Points& points, const Points& normals, const Eigen::VectorXd& nu);
+
+} // namespace liftremesh

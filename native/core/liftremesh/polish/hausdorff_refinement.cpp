@@ -1,0 +1,232 @@
+#include "liftremesh/polish/hausdorff_refinement.h"
+
+#include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/editable_mesh.h"
+#include "liftremesh/mesh/geometry.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+using Tri = EditableMesh::Tri;
+
+// The input's referenced vertices, then points along each of its edges at most `spacing` apart.
+std::vector<Eigen::Vector3d> edge_samples(const Mesh& input, double spacing) {
+    const std::vector<char> used = referenced_vertices(input);
+    std::vector<Eigen::Vector3d> samples;
+    for (Eigen::Index i = 0; i < input.points.rows(); ++i)
+        if (used[i]) samples.push_back(input.points.row(i).transpose());
+    for (const EdgeCount& e : edge_counts(input.triangles)) {
+        const Eigen::Vector3d a = input.points.row(e.a).transpose(), b = input.points.row(e.b).transpose();
+        const double steps = std::ceil((b - a).norm() / spacing);
+        if (!(steps < 1e6)) continue; // a non-finite or absurdly long edge: its end points will do
+        for (int i = 1; i < static_cast<int>(steps); ++i) samples.push_back(a + (b - a) * (i / steps));
+    }
+    return samples;
+}
+
+// A sample farther than the tolerance from the mesh, and the triangle it is nearest to.
+struct Witness {
+    double distance;
+    long sample;
+    int32_t triangle;
+    bool operator<(const Witness& o) const { return distance != o.distance ? distance > o.distance : sample < o.sample; }
+};
+
+class Refinement {
+public:
+    Refinement(const Mesh& mesh, const AabbTree& input, const HausdorffRefinementParams& params)
+        : mesh_(mesh), input_(input), params_(params) {}
+
+    // Inserts the witnesses of the current mesh; returns how many, marking the triangles made.
+    long insert(const std::vector<Eigen::Vector3d>& samples, long allowed) {
+        const std::vector<Witness> witnesses = find_witnesses(samples);
+        near_.assign(mesh_.tris.size(), 0);
+        if (witnesses.empty()) return 0;
+        std::vector<char> flagged(mesh_.points.size(), 0);
+        for (const Witness& w : witnesses)
+            for (int32_t v : mesh_.tris[w.triangle]) flagged[v] = 1;
+        const auto uses = mesh_.edge_uses_around(flagged);
+        long inserted = 0;
+        for (const Witness& w : witnesses) {
+            if (inserted == allowed) break;
+            if (near_[w.triangle]) continue; // changed this round: its witnesses are sampled again next round
+            if (insert_at(w.triangle, samples[w.sample], uses)) ++inserted;
+        }
+        return inserted;
+    }
+
+    // Flips edges of the triangles made this round, for distance or quality (see the header).
+    long flip_near_insertions() {
+        long flipped = 0;
+        for (int pass = 0; pass < 5; ++pass) {
+            std::vector<char> changed;
+            const long flips =
+                mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
+            for (size_t t = 0; t < changed.size(); ++t)
+                if (changed[t]) near_[t] = 1;
+            flipped += flips;
+            if (flips == 0) break;
+        }
+        return flipped;
+    }
+
+    void write_to(Mesh& mesh) const { mesh_.write_to(mesh, 0); }
+
+private:
+    // The samples farther than the tolerance from the mesh, farthest first. A sample is near
+    // the mesh if a triangle lies within the tolerance: the one found last round if it has not
+    // changed since, else the one that proved its thread's previous sample near (consecutive
+    // samples lie along the same edge), else one a search bounded by the tolerance finds. Only
+    // the others, the witnesses, are searched for their closest triangle. Which triangle proves
+    // a sample near may depend on the threads; whether it is near, its distance and its closest
+    // triangle do not.
+    std::vector<Witness> find_witnesses(const std::vector<Eigen::Vector3d>& samples) {
+        const AabbTree tree(mesh_.to_mesh());
+        const double tol2 = params_.tolerance * params_.tolerance;
+        const long n = static_cast<long>(samples.size());
+        proof_.resize(samples.size(), -1);
+        const std::vector<char>& changed = near_; // last round's edits (no proof_ yet in the first)
+        auto unchanged = [&](int32_t t) { return t >= 0 && !changed[t]; };
+        auto within = [&](int32_t t, const Eigen::Vector3d& q) {
+            const Tri& x = mesh_.tris[t];
+            const Eigen::Vector3d& a = mesh_.points[x[0]];
+            return (closest_point_on_triangle(q, a, mesh_.points[x[1]], mesh_.points[x[2]]) - q).squaredNorm() < tol2;
+        };
+        std::vector<ClosestPoint> far(samples.size(), ClosestPoint{Eigen::Vector3d::Zero(), 0.0, -1});
+#pragma omp parallel
+        {
+            int32_t hint = -1;
+#pragma omp for schedule(static)
+            for (long i = 0; i < n; ++i) {
+                if (unchanged(proof_[i])) continue;
+                if (hint >= 0 && within(hint, samples[i])) {
+                    proof_[i] = hint;
+                    continue;
+                }
+                proof_[i] = tree.any_within(samples[i], params_.tolerance);
+                if (proof_[i] >= 0)
+                    hint = proof_[i];
+                else
+                    far[i] = tree.closest(samples[i]);
+            }
+        }
+        std::vector<Witness> witnesses;
+        for (long i = 0; i < n; ++i)
+            if (far[i].triangle >= 0 && far[i].squared_distance <= params_.max_distance * params_.max_distance)
+                witnesses.push_back({std::sqrt(far[i].squared_distance), i, far[i].triangle});
+        std::sort(witnesses.begin(), witnesses.end()); // farthest first, then by sample: deterministic
+        return witnesses;
+    }
+
+    // Splits triangle t at p, or one of its edges: an edge shared with an unchanged triangle
+    // (both split in two) or a boundary edge (t split in two, p joining the boundary). Of the
+    // splits that turn no triangle over, the one whose worst triangle is best, if that is at
+    // least the floor.
+    bool insert_at(int32_t t, const Eigen::Vector3d& p, const std::unordered_map<uint64_t, EditableMesh::Uses>& uses) {
+        struct Split {
+            std::vector<std::pair<int, Tri>> replace; // triangle index, what it becomes
+            std::vector<Tri> append;
+        };
+        const Tri tri = mesh_.tris[t];
+        const auto m = static_cast<int32_t>(mesh_.points.size());
+        std::vector<Split> splits;
+        splits.push_back({{{t, {tri[0], tri[1], m}}}, {{tri[1], tri[2], m}, {tri[2], tri[0], m}}});
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = tri[j], b = tri[(j + 1) % 3], c = tri[(j + 2) % 3];
+            const auto found = uses.find(edge_key(a, b));
+            if (found == uses.end()) continue;
+            if (found->second.size() == 1) {
+                splits.push_back({{{t, {a, m, c}}}, {{m, b, c}}});
+                continue;
+            }
+            const auto quad = mesh_.quad_of(found->second);
+            if (!quad || near_[quad->t1] || near_[quad->t2]) continue;
+            const int other = quad->t1 == t ? quad->t2 : quad->t1;
+            const int32_t d = quad->t1 == t ? quad->d : quad->c; // opposite the edge in the other triangle
+            splits.push_back({{{t, {a, m, c}}, {other, {b, m, d}}}, {{m, b, c}, {m, a, d}}});
+        }
+        mesh_.points.push_back(p); // so that normal() and kappa() see it; removed if nothing is split
+        double best = -1.0;
+        const Split* chosen = nullptr;
+        for (const Split& split : splits) {
+            // Each new triangle keeps the side of the one it comes from: the replaced one, or
+            // for an appended one the triangle it shares the new point's edge with.
+            double worst = 2.0;
+            bool ok = true;
+            auto check = [&](const Tri& made, int parent) {
+                ok = ok && mesh_.normal(made).dot(mesh_.normal(mesh_.tris[parent])) > 0.0;
+                worst = std::min(worst, mesh_.kappa(made));
+            };
+            for (const auto& [f, made] : split.replace) check(made, f);
+            for (size_t k = 0; k < split.append.size(); ++k)
+                check(split.append[k], split.replace[std::min(k, split.replace.size() - 1)].first);
+            if (ok && worst > best) {
+                best = worst;
+                chosen = &split;
+            }
+        }
+        if (!chosen || !(best >= params_.kappa_floor)) {
+            mesh_.points.pop_back();
+            return false;
+        }
+        for (const auto& [f, made] : chosen->replace) {
+            mesh_.tris[f] = made;
+            near_[f] = 1;
+        }
+        for (const Tri& made : chosen->append) mesh_.tris.push_back(made);
+        near_.resize(mesh_.tris.size(), 1);
+        return true;
+    }
+
+    bool should_flip(const EditableMesh::Quad& q) const {
+        const auto [before, after] = diagonal_distances(mesh_, q, input_);
+        // The edge that cuts across a crease: the other diagonal lies on the input.
+        if (before > params_.tolerance && after < 0.5 * before)
+            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, params_.kappa_floor);
+        return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
+    }
+
+    EditableMesh mesh_;
+    const AabbTree& input_;
+    const HausdorffRefinementParams& params_;
+    std::vector<char> near_;      // per triangle: made or changed this round
+    std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
+};
+
+} // namespace
+
+HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params,
+                                              const AabbTree* input_tree) {
+    check_indices(mesh, "refined mesh");
+    check_indices(input, "input mesh");
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(params.tolerance) || !positive(params.sample_spacing) || !(params.max_distance > 0.0) ||
+        !(params.kappa_floor >= 0.0) || params.rounds < 0 || params.max_inserted < 0)
+        throw InvalidInput("refine_towards_input: tolerance, sample spacing and largest distance must be positive "
+                           "(the first two finite), the kappa floor, rounds and most insertions not negative");
+    HausdorffRefinementStats stats;
+    if (mesh.triangles.rows() == 0 || input.triangles.rows() == 0) return stats;
+    const std::vector<Eigen::Vector3d> samples = edge_samples(input, params.sample_spacing);
+    std::optional<AabbTree> own;
+    if (!input_tree) input_tree = &own.emplace(input);
+    Refinement refinement(mesh, *input_tree, params);
+    for (int round = 0; round < params.rounds && stats.inserted < params.max_inserted; ++round) {
+        const long inserted = refinement.insert(samples, params.max_inserted - stats.inserted);
+        if (inserted == 0) break;
+        stats.inserted += inserted;
+        stats.flipped += refinement.flip_near_insertions();
+    }
+    refinement.write_to(mesh);
+    return stats;
+}
+
+} // namespace liftremesh

@@ -1,0 +1,65 @@
+// The worst triangles raised by local edits that keep the surface on the input: the last step of
+// the repair. The restricted Delaunay triangulation of the optimised sites is Delaunay in the
+// lifted space, not in the output's planes, and 100 iterations leave a few sites short of
+// centroidal: on the shared CAD meshes some flat quads come out split along their longer
+// diagonal (gmsh_lever.stl, seed 3: a triangle of kappa 0.32 whose flip gives 0.67 and 0.73) and
+// some flat triangles obtuse (the lever, seed 10: 0.37 with its three vertices on one plane).
+// As Gmsh, MMG and CGAL do after their own steps:
+// - folds: an edge whose two triangles turn by more than 90 degrees and reach farther from the
+//   input than the tolerance (on t13, seed 3: a triangle across the end of a wall thinner than
+//   the edge length, folded 157 degrees onto its neighbour, 0.74 from the input) is flipped when
+//   both new triangles lie on it (fold_flip_fits_input, flip_rules.h); a crease of the input, followed, is
+//   near it and left alone;
+// - caps, first: a triangle with an angle of 150 degrees or more, its apex near the opposite edge
+//   (three vertices along a crease joined across it: FreeCAD's inductor RLF_7030, seed 3, kappa
+//   0.009 at a corner of its top), has that edge flipped when both new triangles lie on the input
+//   (as for folds), are better than the worse old one, and neither turns by more than 120 degrees
+//   from the cap's neighbour it then borders. The crease then runs through the apex. The cap's
+//   normal, near zero, is not weighed, as the flips below would. A cap on the rim of a plate
+//   thinner than the edge length (SOT404: 0.01 mm at edges of 0.04 mm, kappa 0.09) stands for
+//   that rim and is kept: flipped, the plate would fold onto itself;
+// - flips: an edge is flipped when its quad is nearly planar and the worse kappa (Eq. 26) of its
+//   two triangles goes up (EditableMesh::flip_improves_quality: never across a sharp edge, whose
+//   triangles turn by more than 30 degrees), and the new diagonal's midpoint is no farther from
+//   the input than the old one's, or within half the tolerance;
+// - relaxation: a vertex of a triangle below `relax_below`, inside the surface (no boundary
+//   edge) and on a flat fan (its triangles within `flat_angle_deg` of their mean normal: not on
+//   a crease), moves to whichever of a few targets on the input raises the worst kappa of its
+//   fan most, if any does and no triangle of the fan turns by more than 30 degrees; the targets
+//   are the centroid of its neighbours moved within the fan's plane, and points a quarter, half
+//   and three quarters of the way to the apex of the equilateral triangle on the far edge of
+//   each of its bad triangles, each then put on the input (closest point);
+// - flips again, around the vertices moved.
+// No vertex is added or removed and the topology and orientation are kept.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+namespace liftremesh {
+
+struct QualityPolishParams {
+    //! Distance from the input that a flip may give a new diagonal (half of it; the pipeline:
+    //! the Hausdorff refinement's tolerance, 0.15 h). Positive and finite.
+    double tolerance = 0.0;
+    //! Passes of flips (the first over every edge, each next one around the last one's flips).
+    int flip_passes = 8;
+    //! Passes of relaxation over the vertices of the triangles below relax_below.
+    int relax_passes = 3;
+    double relax_below = 0.6;
+    //! A fan whose triangles turn from their mean normal by more than this is not moved (a
+    //! crease, or a strongly curved part). Degrees.
+    double flat_angle_deg = 8.0;
+};
+
+struct QualityPolishStats {
+    long flipped = 0;  //!< edge flips, folds undone included
+    long unfolded = 0; //!< of those, the flips that undid a fold
+    long moved = 0;    //!< vertex moves
+};
+
+//! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
+//! positive and finite, a pass count is negative, or an index is out of range.
+QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params);
+
+} // namespace liftremesh

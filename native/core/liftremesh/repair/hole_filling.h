@@ -1,0 +1,46 @@
+// Filling holes of a surface mesh (Section 5.2.2): each boundary loop is projected onto its
+// best-fit plane (principal component analysis) and triangulated by a constrained Delaunay
+// triangulation of the loop.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+
+#include <functional>
+#include <vector>
+
+namespace liftremesh {
+
+//! Boundary loops of an oriented manifold mesh. A boundary edge is an edge used by exactly one
+//! triangle. Orientation convention: for every i, the edge loop[i] -> loop[(i + 1) % n] runs
+//! OPPOSITE to the way its one triangle traverses it (that triangle runs loop[i+1] -> loop[i]).
+//! Hence a new triangle (loop[i], loop[i+1], x) agrees with the surface's orientation, and the
+//! loop is the boundary of the missing patch oriented like that patch: seen from the side the
+//! surface normals point to (from outside a closed outward-oriented surface), it runs
+//! counter-clockwise around the hole. Example: removing triangle (a, b, c) from a closed mesh
+//! gives the loop (a, b, c), up to a rotation. Each loop is simple (no repeated vertex); where
+//! the boundary passes a vertex twice (a "pinched" boundary) it is split there into simple
+//! loops, each containing that vertex. Loops start at an arbitrary vertex. Boundary edges that
+//! do not close up (only possible if the mesh is not consistently oriented) are left out.
+//! O(#F log #F).
+std::vector<std::vector<int32_t>> boundary_loops(const Mesh& mesh);
+
+//! Fills every boundary loop (as given by boundary_loops(), with its convention) for which
+//! `should_fill(loop)` is true (all loops when it is empty; loops of fewer than 3 vertices are
+//! never offered). Section 5.2.2: a loop of 3 vertices gets its one triangle; a longer one is
+//! projected onto its best-fit plane (PCA; normal = least-variance axis, oriented like the
+//! triangles around the hole) and, if the projected polygon is simple, triangulated by its
+//! constrained Delaunay triangulation (ear clipping, best kappa first, then Lawson flips of the
+//! diagonals until locally Delaunay); otherwise (or if the edge rule below blocks every planar
+//! ear) by greedy ear clipping in 3D taking the best-kappa ear that faces like the loop.
+//! Rules: no vertex is added or moved; every new triangle follows the loop order, so it is
+//! oriented like the surface; no new triangle creates an edge the mesh (or an earlier fill)
+//! already has, and a loop that cannot be triangulated under that rule is left open; a 3-loop
+//! that is already a triangle of the mesh (a lone triangle's boundary) is left open. A zero-area
+//! triangle is made only by the 3D fallback when no other ear is valid (a collinear loop), so
+//! that even such a loop closes. New triangles are appended after the existing ones, whose order is unchanged.
+//! Returns the number of holes filled. The mesh should be an oriented manifold
+//! (make_manifold) on entry and then stays one. O(n^2) per loop of n vertices. Throws
+//! InvalidInput if an index is out of range.
+long fill_holes(Mesh& mesh, const std::function<bool(const std::vector<int32_t>&)>& should_fill = {});
+
+} // namespace liftremesh

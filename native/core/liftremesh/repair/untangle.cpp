@@ -1,0 +1,228 @@
+#include "liftremesh/repair/untangle.h"
+
+#include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/compressed_rows.h"
+#include "liftremesh/mesh/editable_mesh.h"
+#include "liftremesh/spatial/self_intersection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace liftremesh {
+
+namespace {
+
+using Tri = EditableMesh::Tri;
+
+std::array<Eigen::Vector3d, 3> corners(const EditableMesh& mesh, const Tri& t) {
+    return {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
+}
+
+//! The triangles of a pass: a tree of the mesh as the pass found it, and the triangles the
+//! pass has changed since, flipped or moved (their boxes are no longer the tree's).
+struct PassTriangles {
+    const EditableMesh& mesh;
+    const AabbTree& tree;
+    std::vector<char> changed; // per triangle
+    std::vector<int> changed_list;
+    std::vector<int32_t> found; // scratch
+
+    PassTriangles(const EditableMesh& m, const AabbTree& t) : mesh(m), tree(t), changed(m.tris.size(), 0) {}
+
+    void mark_changed(int t) {
+        if (!changed[static_cast<size_t>(t)]) changed_list.push_back(t);
+        changed[static_cast<size_t>(t)] = 1;
+    }
+
+    //! How many times the triangles `tris` (corners as the mesh has them now) cross the others
+    //! but those numbered in `skip`, and each other (a triangle crossing two of them counted
+    //! twice): the others whose boxes meet theirs, as the tree finds them unless changed since,
+    //! and as they are now for those changed since.
+    long crossings_of(const std::vector<Tri>& tris, const std::vector<int>& skip) {
+        std::vector<std::array<Eigen::Vector3d, 3>> at;
+        Eigen::Vector3d lo = mesh.points[tris[0][0]], hi = lo;
+        for (const Tri& t : tris) {
+            at.push_back(corners(mesh, t));
+            for (const Eigen::Vector3d& x : at.back()) {
+                lo = lo.cwiseMin(x);
+                hi = hi.cwiseMax(x);
+            }
+        }
+        long count = 0;
+        for (size_t i = 0; i < tris.size(); ++i)
+            for (size_t j = i + 1; j < tris.size(); ++j) count += triangles_cross(tris[i], at[i], tris[j], at[j]) ? 1 : 0;
+        auto test = [&](int g) {
+            if (std::find(skip.begin(), skip.end(), g) != skip.end()) return;
+            const Tri& t = mesh.tris[static_cast<size_t>(g)];
+            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, t);
+            for (size_t i = 0; i < tris.size(); ++i) count += triangles_cross(tris[i], at[i], t, pt) ? 1 : 0;
+        };
+        found.clear();
+        tree.triangles_meeting_box(lo, hi, found);
+        for (int32_t g : found)
+            if (!changed[static_cast<size_t>(g)]) test(g);
+        for (int g : changed_list) {
+            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, mesh.tris[static_cast<size_t>(g)]);
+            const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]);
+            const Eigen::Vector3d thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
+            if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all()) test(g);
+        }
+        return count;
+    }
+};
+
+//! One pass of flips around the triangles of `crossings` (see untangle()), written into
+//! `mesh`; the pass's copies of the mesh are gone when it returns. Returns the flips.
+long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
+                   const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
+    EditableMesh edit(mesh);
+    PassTriangles triangles(edit, mesh_tree);
+    std::vector<char> around(edit.tris.size(), 0), changed;
+    for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
+    const auto accept = [&](const EditableMesh::Quad& q) {
+        const Tri &t1 = edit.tris[q.t1], &t2 = edit.tris[q.t2];
+        const auto [n1, n2] = EditableMesh::flipped(q);
+        if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
+        const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
+        if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
+        if (!(triangles.crossings_of({n1, n2}, {q.t1, q.t2}) < triangles.crossings_of({t1, t2}, {q.t1, q.t2})))
+            return false;
+        const double near_before = std::max(triangle_distance_from_input(edit, t1, input),
+                                            triangle_distance_from_input(edit, t2, input));
+        const double near_after = std::max(triangle_distance_from_input(edit, n1, input),
+                                           triangle_distance_from_input(edit, n2, input));
+        if (!(near_after <= std::max(near_before, params.tolerance))) return false;
+        triangles.mark_changed(q.t1); // flip_pass flips what it accepts
+        triangles.mark_changed(q.t2);
+        return true;
+    };
+    const long flips = edit.flip_pass_around(around, accept, changed);
+    if (flips > 0) edit.write_to(mesh);
+    return flips;
+}
+
+//! A vertex's fan as the move rules weigh it (see untangle()).
+struct FanState {
+    double worst_kappa = 2.0; // its worst triangle's kappa
+    double farthest = 0.0;    // its farthest triangle's distance from the input
+    int against = 0;          // its triangles facing against the input's triangle nearest to them
+    bool degenerate = false;  // a triangle of zero area
+};
+
+FanState fan_state(const EditableMesh& mesh, const std::vector<Tri>& fan, const AabbTree& input) {
+    FanState state;
+    for (const Tri& t : fan) {
+        const Eigen::Vector3d n = mesh.normal(t);
+        state.degenerate = state.degenerate || n.isZero(0.0);
+        state.worst_kappa = std::min(state.worst_kappa, mesh.kappa(t));
+        const TriangleNearInput near = triangle_near_input(mesh, t, input);
+        state.farthest = std::max(state.farthest, near.distance);
+        state.against += near.nearest_to_centroid >= 0 && n.dot(input.triangle_normal(near.nearest_to_centroid)) < 0.0;
+    }
+    return state;
+}
+
+//! One pass of moves over the inner vertices of the triangles of `crossings`, in index order
+//! (see untangle()), written into `mesh`. Returns the moves.
+long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
+               const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
+    EditableMesh edit(mesh);
+    PassTriangles triangles(edit, mesh_tree);
+    const CompressedRows fans = edit.fans();
+    const std::vector<char> on_border = edit.border_points();
+    std::vector<int32_t> candidates;
+    for (const auto& [s, t] : crossings)
+        for (int32_t f : {s, t})
+            for (int32_t v : edit.tris[static_cast<size_t>(f)])
+                if (!on_border[static_cast<size_t>(v)]) candidates.push_back(v);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+
+    long moves = 0;
+    std::vector<int> fan;
+    std::vector<Tri> fan_tris;
+    for (int32_t v : candidates) {
+        fan.assign(fans.begin(v), fans.end(v));
+        fan_tris.clear();
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero(); // each neighbour of an inner vertex is in two of its triangles
+        for (int f : fan) {
+            fan_tris.push_back(edit.tris[static_cast<size_t>(f)]);
+            for (int32_t w : fan_tris.back())
+                if (w != v) centroid += edit.points[static_cast<size_t>(w)];
+        }
+        if (fan.size() < 3) continue;
+        centroid /= static_cast<double>(2 * fan.size());
+        const long before = triangles.crossings_of(fan_tris, fan);
+        if (before == 0) continue;
+        const FanState was = fan_state(edit, fan_tris, input);
+        const Eigen::Vector3d p = edit.points[static_cast<size_t>(v)];
+        Eigen::Vector3d chosen = p;
+        long fewest = before;
+        double best_kappa = -1.0;
+        for (double s : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+            edit.points[static_cast<size_t>(v)] = input.closest(p + s * (centroid - p)).point;
+            const long after = triangles.crossings_of(fan_tris, fan);
+            if (after > fewest) continue;
+            const FanState now = fan_state(edit, fan_tris, input);
+            if (now.degenerate || now.against > was.against ||
+                !(now.worst_kappa >= std::min(was.worst_kappa, params.kappa_floor)) ||
+                !(now.farthest <= std::max(was.farthest, params.tolerance)))
+                continue;
+            if (after < fewest || now.worst_kappa > best_kappa) {
+                fewest = after;
+                best_kappa = now.worst_kappa;
+                chosen = edit.points[static_cast<size_t>(v)];
+            }
+        }
+        edit.points[static_cast<size_t>(v)] = chosen;
+        if (fewest < before) {
+            ++moves;
+            for (int f : fan) triangles.mark_changed(f);
+        } else {
+            edit.points[static_cast<size_t>(v)] = p;
+        }
+    }
+    if (moves > 0) edit.write_to(mesh);
+    return moves;
+}
+
+} // namespace
+
+UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
+                       const UntangleParams& params, std::optional<AabbTree> mesh_tree) {
+    check_indices(mesh, "untangled mesh");
+    if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.passes < 0)
+        throw InvalidInput("untangle: the tolerance must be positive and finite, the passes not negative");
+    UntangleStats stats;
+    // One tree of the mesh at a time: the one each pass finds it with, made again after each pass
+    // that changed it (the pass's copies gone by then), for the next pass and the crossings left.
+    stats.tree = std::move(mesh_tree);
+    auto tree = [&]() -> const AabbTree& {
+        if (!stats.tree) stats.tree.emplace(mesh);
+        return *stats.tree;
+    };
+    auto recount = [&]() {
+        stats.tree.reset();
+        crossings = self_intersecting_pairs(mesh, tree());
+    };
+    // Flips first, since they move no vertex; then moves for what they leave.
+    for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
+        const long flips = untangle_pass(mesh, tree(), input, crossings, params);
+        if (flips == 0) break;
+        stats.flipped += flips;
+        recount();
+    }
+    for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
+        const long moves = move_pass(mesh, tree(), input, crossings, params);
+        if (moves == 0) break;
+        stats.moved += moves;
+        recount();
+    }
+    stats.crossings = std::move(crossings);
+    tree();
+    return stats;
+}
+
+} // namespace liftremesh

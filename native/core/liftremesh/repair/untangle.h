@@ -1,0 +1,58 @@
+// Triangles of the output that pass through each other, untangled by edge flips, then by vertex
+// moves: the repair's last step. Where the input has features smaller than the edge length (the
+// peers' FreeCAD connector TSM_103: 0.108 mm between housings 0.381 mm apart, at edges of 0.1 to
+// 0.26 mm) the restricted Delaunay triangulation can fold there, and a fold that passes through
+// its neighbours is what a tetrahedral mesher (TetGen, Netgen, Gmsh) refuses.
+// - Flips first, since they move no vertex: an edge of a crossing triangle is flipped when that
+//   lowers the number of crossings of its two triangles with the rest of the mesh, the new
+//   triangles are no farther from the input than the old ones (or within the tolerance) and no
+//   sliver is made.
+// - Then moves, for what the flips leave (FreeCAD's SOT23 package, seed 1: 38 crossings after
+//   the flips, 5 after the moves): an inner vertex of a crossing triangle moves to whichever of
+//   the points 0, 1/4, ..., 1 of the way to its neighbours' centroid, put on the input (closest
+//   point), leaves its fan the fewest crossings (with the rest and among themselves), if fewer
+//   than before, and then the best worst kappa; under the same rules as a flip, and no more of
+//   its triangles facing against the input's triangle nearest to them than before (no fold).
+// Nothing changes on a mesh without crossings; no vertex is added or removed, and no vertex on a
+// border moves; topology and orientation are kept.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace liftremesh {
+
+struct UntangleParams {
+    //! Distance from the input that a new triangle may reach when the old ones were nearer
+    //! (the pipeline: the Hausdorff refinement's tolerance, 0.15 h). Positive and finite.
+    double tolerance = 0.0;
+    //! Passes of flips around the triangles still crossing, each after a fresh count; then as
+    //! many passes of moves.
+    int passes = 4;
+    //! A flip or move may not make a triangle of kappa (Eq. 26) below this, unless the worst
+    //! one it changes was lower still.
+    double kappa_floor = 0.2;
+};
+
+struct UntangleStats {
+    long flipped = 0; //!< edge flips
+    long moved = 0;   //!< vertex moves
+    std::vector<std::pair<int32_t, int32_t>> crossings; //!< what is left, as self_intersecting_pairs
+    //! AabbTree(mesh) of the mesh as left: the one given, or made here.
+    std::optional<AabbTree> tree;
+};
+
+//! Flips edges, then moves vertices, of the triangles in `crossings` (self_intersecting_pairs(mesh,
+//! ...)) as above, pass after pass while crossings are left and a pass changes something.
+//! `mesh_tree`, if given, is AabbTree(mesh), which the first pass uses instead of making its own;
+//! the tree of the mesh as left comes back in stats.tree. Throws InvalidInput if the tolerance is
+//! not positive and finite, passes is negative, or an index is out of range.
+UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
+                       const UntangleParams& params, std::optional<AabbTree> mesh_tree = std::nullopt);
+
+} // namespace liftremesh

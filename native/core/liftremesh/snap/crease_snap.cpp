@@ -1,0 +1,213 @@
+#include "liftremesh/snap/crease_snap.h"
+
+#include "liftremesh/edit/acute_creases.h"
+#include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <tuple>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+using Tri = EditableMesh::Tri;
+
+// The mesh under moves and flips, with each vertex's triangles kept current.
+class Snapper {
+public:
+    Snapper(Mesh& mesh, const AabbTree& input, const CreaseSnapParams& params)
+        : mesh_(mesh), input_(input), params_(params), fans_(mesh_.points.size()),
+          cos_off_(std::cos(60.0 * M_PI / 180.0)) {
+        for (size_t t = 0; t < mesh_.tris.size(); ++t)
+            for (int32_t v : mesh_.tris[t]) fans_[v].push_back(static_cast<int>(t));
+    }
+
+    const EditableMesh& mesh() const { return mesh_; }
+
+    // Moves v to x with the flips that follow, or leaves everything as it was (see the header).
+    bool snap(int32_t v, const Eigen::Vector3d& x, long& flips) {
+        if (fans_[v].empty()) return false; // not a vertex of the surface
+        // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
+        // mesh there, lies farther from x than that.
+        double cut2 = std::numeric_limits<double>::infinity();
+        for (int t : fans_[v]) {
+            const Tri& f = mesh_.tris[t];
+            const Eigen::Vector3d near = closest_point_on_triangle(x, mesh_.points[f[0]], mesh_.points[f[1]], mesh_.points[f[2]]);
+            cut2 = std::min(cut2, (near - x).squaredNorm());
+        }
+        if (!(cut2 > params_.tolerance * params_.tolerance)) return false;
+        saved_.clear();
+        for (int t : fans_[v]) save(t);
+        const Eigen::Vector3d was = mesh_.points[v];
+        const Measure before = measure_saved(); // the fan's originals, v where it was
+        mesh_.points[v] = x;
+        long made = 0;
+        for (int pass = 0; pass < 4; ++pass) {
+            long pass_flips = 0;
+            const std::vector<int> around = touched();
+            for (int t : around)
+                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before);
+            made += pass_flips;
+            if (pass_flips == 0) break;
+        }
+        const Measure after = measure(touched());
+        const bool ok = after.off <= before.off &&
+                        after.worst_kappa >= params_.kappa_floor &&
+                        after.farthest <= std::max(params_.tolerance, before.farthest);
+        if (ok) {
+            flips += made;
+            return true;
+        }
+        mesh_.points[v] = was;
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) set(it->first, it->second);
+        return false;
+    }
+
+private:
+    struct Measure {
+        double worst_kappa = 2.0;
+        double farthest = 0.0;
+        int off = 0; // triangles turned from the input by more than 60 degrees
+    };
+
+    // Whether t turns by more than 60 degrees from the input's triangle `nearest` to its centroid.
+    bool is_off(const Tri& t, int32_t nearest) const {
+        const Eigen::Vector3d n = mesh_.normal(t);
+        const double norm = n.norm();
+        return nearest < 0 || !(norm > 0.0) || !(n.dot(input_.triangle_normal(nearest)) >= cos_off_ * norm);
+    }
+    bool is_off(const Tri& t) const {
+        return is_off(t, input_.closest((mesh_.points[t[0]] + mesh_.points[t[1]] + mesh_.points[t[2]]) / 3.0).triangle);
+    }
+    void add(Measure& m, const Tri& t) const {
+        const TriangleNearInput near = triangle_near_input(mesh_, t, input_); // one query of the centroid for both
+        m.worst_kappa = std::min(m.worst_kappa, mesh_.kappa(t));
+        m.farthest = std::max(m.farthest, near.distance);
+        m.off += is_off(t, near.nearest_to_centroid) ? 1 : 0;
+    }
+    Measure measure_saved() const {
+        Measure m;
+        for (const auto& [t, tri] : saved_) add(m, tri);
+        return m;
+    }
+    Measure measure(const std::vector<int>& tris) const {
+        Measure m;
+        for (int t : tris) add(m, mesh_.tris[t]);
+        return m;
+    }
+
+    // The triangles changed or moved so far in this snap.
+    std::vector<int> touched() const {
+        std::vector<int> out;
+        for (const auto& s : saved_) out.push_back(s.first);
+        return out;
+    }
+    void save(int t) {
+        for (const auto& s : saved_)
+            if (s.first == t) return;
+        saved_.emplace_back(t, mesh_.tris[t]);
+    }
+    void set(int t, const Tri& tri) {
+        for (int32_t v : mesh_.tris[t]) fans_[v].erase(std::find(fans_[v].begin(), fans_[v].end(), t));
+        mesh_.tris[t] = tri;
+        for (int32_t v : tri) fans_[v].push_back(t);
+    }
+    // The quad of edge j of triangle t (EditableMesh::quad_of, t as t1), from the fan of its
+    // first end: the uses of the edge, t's first.
+    std::optional<EditableMesh::Quad> quad(int t, int j) const {
+        const int32_t a = mesh_.tris[t][j], b = mesh_.tris[t][(j + 1) % 3];
+        EditableMesh::Uses uses;
+        auto add = [&](int s, int i) {
+            if (uses.count < 2) uses.first[uses.count] = {s, i};
+            ++uses.count;
+        };
+        add(t, j);
+        for (int s : fans_[a])
+            for (int i = 0; i < 3; ++i) {
+                const int32_t p = mesh_.tris[s][i], q = mesh_.tris[s][(i + 1) % 3];
+                if (s != t && ((p == a && q == b) || (p == b && q == a))) add(s, i);
+            }
+        return mesh_.quad_of(uses);
+    }
+    bool joined(int32_t c, int32_t d) const {
+        for (int s : fans_[c])
+            for (int32_t w : mesh_.tris[s])
+                if (w == d) return true;
+        return false;
+    }
+    long try_flip(int t, int j, const Measure& before) {
+        const auto q = quad(t, j);
+        if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
+        const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
+        if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
+                              std::min(params_.kappa_floor, before.worst_kappa)) &&
+            !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
+            return 0;
+        const auto [n1, n2] = EditableMesh::flipped(*q);
+        if (is_off(n1) || is_off(n2)) return 0;
+        save(q->t1);
+        save(q->t2);
+        set(q->t1, n1);
+        set(q->t2, n2);
+        return 1;
+    }
+
+    EditableMesh mesh_;
+    const AabbTree& input_;
+    const CreaseSnapParams& params_;
+    std::vector<std::vector<int>> fans_;
+    const double cos_off_;
+    std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
+};
+
+} // namespace
+
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
+                                      const CreaseSnapParams& params) {
+    check_indices(mesh, "snapped mesh");
+    check_indices(input, "input mesh");
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
+        !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0))
+        throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
+                           "radius not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
+    CreaseSnapStats stats;
+    const AcuteCreases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius);
+    stats.creases = creases.size();
+    if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
+    // The vertices near a crease, nearest first (then by index: deterministic), after the
+    // vertex nearest to each corner of the creases.
+    std::vector<std::tuple<double, int32_t, Eigen::Vector3d>> near;
+    for (const Eigen::Vector3d& c : creases.corners()) {
+        Eigen::Index nearest = -1;
+        const double d2 = (mesh.points.rowwise() - c.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+        if (d2 > 0.0 && d2 <= params.corner_radius * params.corner_radius)
+            near.emplace_back(-1.0, static_cast<int32_t>(nearest), c);
+    }
+    for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
+        const Eigen::Vector3d p = mesh.points.row(v).transpose();
+        if (const auto x = creases.closest(p, params.radius); x && (*x - p).squaredNorm() > 0.0)
+            near.emplace_back((*x - p).norm(), static_cast<int32_t>(v), *x);
+    }
+    std::sort(near.begin(), near.end(),
+              [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
+    Snapper snapper(mesh, input_tree, params);
+    // A vertex moves once: a second entry (near two corners, or a corner and a crease) holds a
+    // target found from where it was.
+    std::vector<char> moved(static_cast<size_t>(mesh.points.rows()), 0);
+    for (const auto& [distance, v, x] : near)
+        if (!moved[v] && snapper.snap(v, x, stats.flipped)) {
+            moved[v] = 1;
+            ++stats.moved;
+        }
+    if (stats.moved > 0) snapper.mesh().write_to(mesh);
+    return stats;
+}
+
+} // namespace liftremesh

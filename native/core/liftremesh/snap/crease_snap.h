@@ -1,0 +1,66 @@
+// Vertices onto the input's acute creases: the repair of knife edges, where the feature term
+// leaves its sites off the edge (Section 6.2.2 and the README's known gap). Where the input's
+// two faces meet at an interior angle under 60 degrees, Eq. 10 has its minimum for a site in
+// the wedge's middle plane at r = c cos(beta) / (cos^2(beta) + sigma^2 sin^2(beta)) from the edge
+// (2 beta the interior angle, c the distance of its cell's centroid along the faces): 0.37 c at
+// 30 degrees and sigma 5, where a right angle gives 0.05 c. The restricted Delaunay triangulation
+// then cuts the edge off, and where a row of such sites breaks, joins the two faces across the
+// wedge by triangles through its inside.
+//
+// The creases are the input's edges whose two triangles (a consistently oriented pair) turn by
+// more than `min_turn_deg`: on a CAD tessellation a turn of over 120 degrees between neighbours
+// is a feature, never a faceted smooth surface, so no tagging heuristic is involved (an input
+// whose two faces do not share the crease's vertices has none, and is left as it was). First
+// the output vertex nearest to each corner of the creases (an input vertex where one ends or
+// several meet), if within `corner_radius`, then each output vertex within `radius` of a crease,
+// nearest first, is moved onto it (its closest point there), when the crease is cut deeper than
+// `tolerance` there (the vertex's triangles lie farther than that from the point). The edges of
+// its fan that then cross the wedge are flipped (the other diagonal of their quad lies at most
+// half as far from the input: crease_flip_fits), and so are those whose quality flip keeps the
+// surface (quality_flip_keeps_surface). The move and its flips stand only together, and only if
+// - no more of the triangles they change turn from the input's normal nearest to their
+//   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
+// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor;
+// - none of them ends farther from the input than both `tolerance` and the farthest of them
+//   before.
+// Otherwise the mesh is left as it was. On the shared CAD meshes (creases followed within the
+// tolerance) nothing moves.
+#pragma once
+
+#include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
+
+namespace liftremesh {
+
+struct CreaseSnapParams {
+    //! Vertices at most this far from a crease are moved onto it. The pipeline: 0.35 h (h the
+    //! target edge length): the sites Eq. 10 leaves off a 30-degree edge lie 0.1-0.2 h from it,
+    //! those of the faces' first rows 0.5 h and more. Positive and finite.
+    double radius = 0.0;
+    //! The vertex nearest to a corner of the creases (where one ends or several meet), if it is
+    //! at most this far, is moved onto it first. The pipeline: 0.5 h.
+    double corner_radius = 0.0;
+    //! Distance from the input (see above; the pipeline: the Hausdorff refinement's, 0.15 h).
+    //! Positive and finite.
+    double tolerance = 0.0;
+    //! An input edge is an acute crease when its two triangles' normals turn by more than this
+    //! (degrees): 120 is an interior angle under 60 degrees.
+    double min_turn_deg = 120.0;
+    //! See above; the Hausdorff refinement's floor.
+    double kappa_floor = 0.45;
+};
+
+struct CreaseSnapStats {
+    long creases = 0; //!< input edges found to be acute creases
+    long moved = 0;   //!< vertices moved onto them
+    long flipped = 0; //!< edges flipped with those moves
+};
+
+//! Moves vertices of `mesh` onto the acute creases of `input` (see above); `input_tree` is
+//! AabbTree(input). Keeps the mesh's orientation, manifoldness and Euler characteristic (vertex
+//! moves and flips only; a flip never makes an edge the mesh has). Throws InvalidInput if a
+//! parameter is out of range or an index is.
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
+                                      const CreaseSnapParams& params);
+
+} // namespace liftremesh

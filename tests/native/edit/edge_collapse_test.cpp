@@ -1,0 +1,229 @@
+#include "liftremesh/edit/edge_collapse.h"
+#include "liftremesh/exceptions.h"
+#include "liftremesh/measure/quality.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+using namespace liftremesh;
+
+TEST(EdgeCollapse, RemovesACrowdedVertexAndKeepsTopology) {
+    Mesh m = test::make_icosphere(3);
+    // Pull vertex 50 almost onto one of its neighbours: two very short edges' worth of slivers.
+    int32_t neighbour = -1;
+    for (Eigen::Index f = 0; f < m.triangles.rows() && neighbour < 0; ++f)
+        for (int j = 0; j < 3; ++j)
+            if (m.triangles(f, j) == 50) neighbour = m.triangles(f, (j + 1) % 3);
+    m.points.row(50) = 0.97 * m.points.row(neighbour) + 0.03 * m.points.row(50);
+    const double before = test::min_kappa(m);
+    const long vertices = m.points.rows();
+    const long collapsed = collapse_short_edges(m);
+    EXPECT_GE(collapsed, 1);
+    EXPECT_EQ(m.points.rows(), vertices - collapsed);
+    const test::Topology t = test::topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_GT(test::min_kappa(m), std::max(0.3, 2 * before));
+    EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
+}
+
+TEST(EdgeCollapse, LeavesAGoodMeshAlone) {
+    Mesh m = test::make_icosphere(3);
+    const Mesh original = m;
+    EXPECT_EQ(collapse_short_edges(m), 0);
+    EXPECT_EQ(m.triangles, original.triangles);
+}
+
+TEST(EdgeCollapse, RefusesCollapsesThatBreakTheLinkCondition) {
+    // A tetrahedron: every collapse would make it degenerate.
+    Mesh m = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0.01}}, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+    EXPECT_EQ(collapse_short_edges(m, 10.0), 0);
+    EXPECT_EQ(m.triangles.rows(), 4);
+}
+
+TEST(EdgeCollapse, NeverJoinsTwoBoundaryVerticesThroughTheInside) {
+    // A strip one cell wide: every rung joins its two boundaries. Rung 5 is pinched to a short
+    // edge; cells 4 and 5 are split by diagonals from its ends, the others fanned around a middle
+    // vertex (so the vertices opposite the rung have four triangles). Collapsing the rung would
+    // join the two boundaries at one vertex: a non-manifold vertex, the strip cut in two.
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    for (int i = 0; i <= 10; ++i) {
+        p.emplace_back(i, 0.0, 0.0);
+        p.emplace_back(i, i == 5 ? 0.04 : 1.0, 0.0);
+    }
+    for (int32_t i = 0; i < 10; ++i) {
+        const int32_t a = 2 * i, b = 2 * i + 2, c = 2 * i + 3, d = 2 * i + 1; // counter-clockwise
+        if (i == 4) {
+            f.push_back({a, b, d});
+            f.push_back({d, b, c});
+        } else if (i == 5) {
+            f.push_back({a, b, c});
+            f.push_back({a, c, d});
+        } else {
+            const auto m = static_cast<int32_t>(p.size());
+            p.push_back((p[a] + p[b] + p[c] + p[d]) / 4.0);
+            f.push_back({a, b, m});
+            f.push_back({b, c, m});
+            f.push_back({c, d, m});
+            f.push_back({d, a, m});
+        }
+    }
+    Mesh m = test::make_mesh(p, f);
+    const test::Topology before = test::topology(m);
+    ASSERT_TRUE(before.oriented_manifold());
+    collapse_short_edges(m);
+    const test::Topology after = test::topology(m);
+    EXPECT_EQ(after.nonmanifold_vertices, 0);
+    EXPECT_EQ(after.chi, before.chi);
+    EXPECT_EQ(after.boundary_edges, before.boundary_edges);
+}
+
+namespace {
+
+//! Vertex x of m (inside a closed surface) split in two along the path n_0 - x - n_(k/2) of its
+//! neighbours n_0 ... n_(k-1) in fan order: x keeps the triangles from n_0 to n_(k/2), moved
+//! `offset` towards them, a new vertex takes the others, moved as far towards those, and the
+//! slit between them is closed by the edge n_0 - n_(k/2), not by an edge between the two halves
+//! of x: two triangles (n_0, x, n_(k/2)) and (n_(k/2), x', n_0) folded shut onto each other.
+Mesh with_pair_folded_shut(const Mesh& m, int32_t x, double offset) {
+    std::map<int32_t, int32_t> next; // around x: (x, u, next[u]) is a triangle
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (m.triangles(f, j) == x) next[m.triangles(f, (j + 1) % 3)] = m.triangles(f, (j + 2) % 3);
+    std::vector<int32_t> ring = {next.begin()->first};
+    while (static_cast<int32_t>(ring.size()) < static_cast<int32_t>(next.size())) ring.push_back(next[ring.back()]);
+    const size_t half = ring.size() / 2;
+    Mesh out = m;
+    const int32_t y = static_cast<int32_t>(m.points.rows());
+    out.points.conservativeResize(y + 1, 3);
+    Eigen::Vector3d towards_x = Eigen::Vector3d::Zero(), towards_y = Eigen::Vector3d::Zero();
+    for (size_t i = 1; i < half; ++i) towards_x += m.points.row(ring[i]).transpose() / static_cast<double>(half - 1);
+    for (size_t i = half + 1; i < ring.size(); ++i)
+        towards_y += m.points.row(ring[i]).transpose() / static_cast<double>(ring.size() - half - 1);
+    const Eigen::Vector3d p = m.points.row(x).transpose();
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j)
+            if (m.triangles(f, j) == x) {
+                const int32_t u = m.triangles(f, (j + 1) % 3);
+                const size_t i = static_cast<size_t>(std::find(ring.begin(), ring.end(), u) - ring.begin());
+                if (i >= half) out.triangles(f, j) = y;
+            }
+    out.points.row(x) = (p + offset * (towards_x - p).normalized()).transpose();
+    out.points.row(y) = (p + offset * (towards_y - p).normalized()).transpose();
+    const Eigen::Index rows = out.triangles.rows();
+    out.triangles.conservativeResize(rows + 2, 3);
+    out.triangles.row(rows) << ring[0], x, ring[half];
+    out.triangles.row(rows + 1) << ring[half], y, ring[0];
+    return out;
+}
+
+} // namespace
+
+// An icosphere (edges of about 0.15) with a pair folded shut, made as a vertex split whose slit
+// is closed the wrong way round: two triangles on the edge between two opposite neighbours of
+// the vertex, 0.3 long and 0.011 under it, their apexes its two halves, 0.0005 to either side of
+// where it was: they turn by about 175 degrees (the chip resistor 1210_SMD had such a pair at a
+// corner of its body, 175 degrees, its apexes 4% of the edge apart). The pair goes, its apexes
+// joined: the sphere again, one vertex and two triangles fewer, closed, nothing folded, no
+// triangle facing inwards or under kappa 0.3.
+TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const int32_t x = 100; // valence 6 (not one of the icosahedron's twelve)
+    Mesh m = with_pair_folded_shut(sphere, x, 0.0005);
+    ASSERT_TRUE(test::topology(m).closed_oriented_manifold());
+    ASSERT_EQ(test::topology(m).chi, 2);
+    ASSERT_GT(measure_quality(m, {170.0}).sharp_edge_length, 0.0); // the fold
+    const long vertices = m.points.rows(), triangles = m.triangles.rows();
+
+    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 1);
+    EXPECT_EQ(m.points.rows(), vertices - 1);
+    EXPECT_EQ(m.triangles.rows(), triangles - 2);
+    const test::Topology t = test::topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(measure_quality(m, {90.0}).sharp_edge_length, 0.0);
+    EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
+    EXPECT_GE(test::min_kappa(m), 0.3);
+    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 0); // nothing left to remove
+}
+
+// The same pair, its apexes 0.001 apart at an edge of 0.3, is left alone when the apexes must be
+// closer than that (gap_ratio), or the turn larger (min_turn_deg).
+TEST(FoldedPairs, ThePairMustTurnFarAndItsApexesBeClose) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    for (const FoldedPairParams& p : {FoldedPairParams{150.0, 0.001, 0.3}, FoldedPairParams{179.0, 0.25, 0.3}}) {
+        Mesh m = folded;
+        EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere), p), 0);
+        EXPECT_EQ(m.triangles, folded.triangles);
+    }
+}
+
+// The pair of with_pair_folded_shut: its edge's ends and the triangles' corners.
+struct FoldedPair {
+    Eigen::Vector3d a, b;
+    std::array<std::array<Eigen::Vector3d, 3>, 2> triangles;
+};
+
+FoldedPair folded_pair_of(const Mesh& folded) {
+    const Eigen::Index rows = folded.triangles.rows();
+    FoldedPair pair;
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 3; ++j) pair.triangles[k][j] = corner(folded, rows - 2 + k, j);
+    pair.a = pair.triangles[0][0];
+    pair.b = pair.triangles[0][2];
+    return pair;
+}
+
+// The pair measured against an input that has the same two triangles, each apart (its own
+// corners, joined to nothing: no crease): each lies on the input, facing as it does, and the pair
+// is kept.
+TEST(FoldedPairs, APairWhoseTrianglesFaceAsTheInputIsKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    const FoldedPair pair = folded_pair_of(folded);
+    Mesh input = sphere;
+    for (const auto& t : pair.triangles) input = test::joined(input, test::make_mesh({t[0], t[1], t[2]}, {{0, 1, 2}}));
+    Mesh m = folded;
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
+    EXPECT_EQ(m.triangles, folded.triangles);
+    EXPECT_EQ(m.points, folded.points);
+}
+
+// The pair against an input with a knife edge (a tent of two triangles turning by 157 degrees)
+// 0.08 outside the middle of the pair's edge, within its length (0.3) but farther from its
+// triangles than the sphere (which they face against): kept, as a pair standing for that edge
+// would be; with the knife edge taken as a crease only past 160 degrees, removed.
+TEST(FoldedPairs, APairNearAKnifeEdgeOfTheInputIsKept) {
+    const Mesh sphere = test::make_icosphere(3);
+    const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
+    const FoldedPair pair = folded_pair_of(folded);
+    const Eigen::Vector3d mid = 0.5 * (pair.a + pair.b), r = mid.normalized(), t = (pair.b - pair.a).normalized();
+    const Eigen::Vector3d s = r.cross(t), e = mid + 0.08 * r;
+    const Mesh knife = test::make_mesh({e - 0.05 * t, e + 0.05 * t, e + 0.05 * r + 0.01 * s, e + 0.05 * r - 0.01 * s},
+                                       {{0, 1, 2}, {1, 0, 3}});
+    const Mesh input = test::joined(sphere, knife);
+    Mesh m = folded;
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
+    EXPECT_EQ(m.triangles, folded.triangles);
+    FoldedPairParams sharper;
+    sharper.knife_turn_deg = 160.0;
+    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input), sharper), 1);
+}
+
+TEST(FoldedPairs, RefusesParametersOutOfRange) {
+    Mesh m = test::make_icosphere(1);
+    const AabbTree tree(m);
+    for (const FoldedPairParams& p : {FoldedPairParams{90.0, 0.25, 0.3}, FoldedPairParams{180.0, 0.25, 0.3},
+                                      FoldedPairParams{150.0, 0.0, 0.3}, FoldedPairParams{150.0, 1.0, 0.3},
+                                      FoldedPairParams{150.0, 0.25, -0.1}, FoldedPairParams{150.0, 0.25, 1.5},
+                                      FoldedPairParams{150.0, 0.25, 0.3, 0.0}, FoldedPairParams{150.0, 0.25, 0.3, 180.0}})
+        EXPECT_THROW(collapse_folded_pairs(m, m, tree, p), InvalidInput);
+}

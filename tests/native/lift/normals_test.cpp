@@ -1,0 +1,79 @@
+#include "liftremesh/lift/density.h"
+#include "liftremesh/lift/normals.h"
+#include "helpers.h"
+
+#include <gtest/gtest.h>
+
+using namespace liftremesh;
+
+TEST(Normals, SphereNormalsAreRadial) {
+    const Mesh m = test::make_icosphere(3, 0.5);
+    const Points n = vertex_normals(m, 0.05);
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v)
+        EXPECT_GT(n.row(v).dot(m.points.row(v).normalized()), 0.999) << v;
+}
+
+// Section 5.2.1: a face meshed on its own (not connected to its neighbours, like a CAD patch
+// exported separately) still gets the normals of the connected surface along its edge.
+TEST(Normals, AGapDoesNotBreakTheNormals) {
+    const Mesh connected = test::make_cube(0.5, 4);
+    Mesh split = connected;
+    // Give the triangles of the top face (z = +0.5) their own copies of their vertices.
+    std::vector<Eigen::Vector3d> extra;
+    for (Eigen::Index f = 0; f < split.triangles.rows(); ++f) {
+        bool top = true;
+        for (int j = 0; j < 3; ++j) top = top && std::abs(split.points(split.triangles(f, j), 2) - 0.5) < 1e-12;
+        if (!top) continue;
+        for (int j = 0; j < 3; ++j) {
+            extra.push_back(split.points.row(split.triangles(f, j)).transpose());
+            split.triangles(f, j) = static_cast<int32_t>(split.points.rows() + extra.size() - 1);
+        }
+    }
+    const Eigen::Index before = split.points.rows();
+    split.points.conservativeResize(before + static_cast<Eigen::Index>(extra.size()), 3);
+    for (size_t i = 0; i < extra.size(); ++i) split.points.row(before + static_cast<Eigen::Index>(i)) = extra[i].transpose();
+
+    const Points nc = vertex_normals(connected, 0.05), ns = vertex_normals(split, 0.05);
+    // The copy of the corner (0.5, 0.5, 0.5) on the top face: with connectivity alone its normal
+    // would be (0, 0, 1); on the geometric neighbourhood it is the same as the connected corner's.
+    const Eigen::Vector3d corner(0.5, 0.5, 0.5);
+    int checked = 0;
+    for (Eigen::Index v = before; v < split.points.rows(); ++v) {
+        if ((split.points.row(v).transpose() - corner).norm() > 1e-12) continue;
+        for (Eigen::Index w = 0; w < connected.points.rows(); ++w)
+            if ((connected.points.row(w).transpose() - corner).norm() < 1e-12) {
+                EXPECT_GT(ns.row(v).dot(nc.row(w)), 0.999);
+                EXPECT_LT(ns(v, 2), 0.9); // not the top face's own normal
+                ++checked;
+            }
+    }
+    EXPECT_GT(checked, 0);
+}
+
+TEST(Normals, LiftingAppendsScaledNormals) {
+    const Mesh m = test::make_icosphere(1);
+    const Points n = vertex_normals(m, 0.1);
+    const LiftedPoints six = lift(m.points, n, 0.05), three = lift(m.points, n, 0.0);
+    ASSERT_EQ(six.cols(), 6);
+    ASSERT_EQ(three.cols(), 3);
+    EXPECT_EQ((six.leftCols(3) - m.points).norm(), 0.0);
+    EXPECT_NEAR((six.rightCols(3) - 0.05 * n).norm(), 0.0, 1e-15); // Eq. 12
+}
+
+TEST(Density, IsOneOnAPlaneAndOnePlusCurvatureOnASphere) {
+    const Mesh plane = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    const Eigen::VectorXd flat = triangle_density(plane, vertex_normals(plane, 0.1), 0.1);
+    EXPECT_NEAR(flat.maxCoeff(), 1.0, 1e-12);
+    EXPECT_NEAR(flat.minCoeff(), 1.0, 1e-12);
+    // On a sphere of radius r the normal's Jacobian is the tangent projector over r: its rows'
+    // largest norm lies between sqrt(2/3)/r and 1/r (Eq. 24).
+    const double r = 0.5;
+    const Mesh sphere = test::make_icosphere(4, r);
+    const Eigen::VectorXd rho = triangle_density(sphere, vertex_normals(sphere, 0.01), 0.01);
+    EXPECT_GT(rho.minCoeff(), 1.0 + 0.95 * std::sqrt(2.0 / 3.0) / r);
+    EXPECT_LT(rho.maxCoeff(), 1.0 + 1.05 / r);
+    // Weights rho^delta (Eq. 25).
+    const Eigen::VectorXd w = density_weights(rho, 0.4);
+    EXPECT_NEAR(w[7], std::pow(rho[7], 0.4), 1e-15);
+    EXPECT_EQ(density_weights(rho, 0.0), Eigen::VectorXd::Ones(rho.size()));
+}

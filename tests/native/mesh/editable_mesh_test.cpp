@@ -1,0 +1,81 @@
+// The local edits shared by patch refinement and the Hausdorff refinement: edge uses, the quad
+// of an edge, splits and flips keep an oriented surface.
+#include "liftremesh/mesh/editable_mesh.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+using namespace liftremesh;
+
+namespace {
+// The unit square as two triangles (0, 1, 2) and (0, 2, 3), counter-clockwise seen from +z.
+Mesh square() {
+    return test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+}
+} // namespace
+
+TEST(EditableMesh, QuadOfTheDiagonalThenFlipAndSplitKeepOrientation) {
+    EditableMesh m(square());
+    const auto uses = m.edge_uses();
+    ASSERT_EQ(uses.size(), 5u);
+    EXPECT_EQ(uses.at(edge_key(0, 1)).size(), 1u); // a boundary edge
+    const auto quad = m.quad_of(uses.at(edge_key(0, 2)));
+    ASSERT_TRUE(quad);
+    EXPECT_EQ(std::min(quad->a, quad->b), 0);
+    EXPECT_EQ(std::max(quad->a, quad->b), 2);
+    EXPECT_EQ(quad->c + quad->d, 4); // 1 and 3
+    EXPECT_FALSE(m.quad_of(uses.at(edge_key(0, 1))));
+
+    m.flip(*quad); // now the diagonal 1-3
+    EXPECT_EQ(m.edge_uses().count(edge_key(0, 2)), 0u);
+    EXPECT_EQ(m.edge_uses().at(edge_key(1, 3)).size(), 2u);
+    for (const auto& t : m.tris) EXPECT_GT(m.normal(t).z(), 0.0);
+
+    const auto diagonal = m.quad_of(m.edge_uses().at(edge_key(1, 3)));
+    ASSERT_TRUE(diagonal);
+    const int32_t mid = m.split_edge(*diagonal, Eigen::Vector3d(0.5, 0.5, 0.0));
+    EXPECT_EQ(mid, 4);
+    ASSERT_EQ(m.tris.size(), 4u);
+    for (const auto& t : m.tris) EXPECT_NEAR(m.normal(t).z(), 0.5, 1e-12); // each a quarter, facing +z
+    const Mesh out = m.to_mesh();
+    const test::Topology topo = test::topology(out);
+    EXPECT_TRUE(topo.oriented_manifold());
+    EXPECT_EQ(topo.chi, 1);
+    EXPECT_EQ(topo.boundary_edges, 4);
+}
+
+TEST(EditableMesh, UsesAroundFlaggedVerticesAreThoseOfTheWholeMeshThere) {
+    EditableMesh m(test::make_cube(0.5, 4));
+    const auto all = m.edge_uses();
+    std::vector<char> flagged(m.points.size(), 0);
+    flagged[7] = flagged[30] = 1;
+    const auto around = m.edge_uses_around(flagged);
+    ASSERT_FALSE(around.empty());
+    for (const auto& [key, uses] : all) {
+        const auto a = static_cast<int32_t>(key >> 32), b = static_cast<int32_t>(key & 0xffffffffu);
+        const bool near = flagged[a] || flagged[b];
+        ASSERT_EQ(around.count(key), near ? 1u : 0u);
+        if (!near) continue;
+        EXPECT_EQ(around.at(key).size(), uses.size());
+        EXPECT_EQ(around.at(key)[0].tri, uses[0].tri);
+        EXPECT_EQ(around.at(key)[1].tri, uses[1].tri);
+    }
+}
+
+TEST(EditableMesh, QualityFlipOnlyForANearlyPlanarQuadThatGetsBetter) {
+    // A thin rhombus split along its long diagonal: flipping to the short one is better.
+    EditableMesh flat(test::make_mesh({{0, 0, 0}, {2, -0.3, 0}, {4, 0, 0}, {2, 0.3, 0}}, {{0, 1, 2}, {0, 2, 3}}));
+    const auto q = flat.quad_of(flat.edge_uses().at(edge_key(0, 2)));
+    ASSERT_TRUE(q);
+    EXPECT_TRUE(flat.flip_improves_quality(*q));
+    flat.flip(*q);
+    const auto back = flat.quad_of(flat.edge_uses().at(edge_key(1, 3)));
+    ASSERT_TRUE(back);
+    EXPECT_FALSE(flat.flip_improves_quality(*back)); // and not back again
+    // The same rhombus folded 90 degrees along the long diagonal: a flip would change the shape.
+    EditableMesh folded(test::make_mesh({{0, 0, 0}, {2, -0.3, 0}, {4, 0, 0}, {2, 0, 0.3}}, {{0, 1, 2}, {0, 2, 3}}));
+    const auto f = folded.quad_of(folded.edge_uses().at(edge_key(0, 2)));
+    ASSERT_TRUE(f);
+    EXPECT_FALSE(folded.flip_improves_quality(*f));
+}

@@ -1,0 +1,175 @@
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/mesh.h"
+#include "helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <vector>
+
+using namespace liftremesh;
+
+TEST(Geometry, KappaIsOneForEquilateralAndZeroForDegenerate) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
+    EXPECT_NEAR(triangle_kappa(a, b, c), 1.0, 1e-12);
+    EXPECT_NEAR(triangle_kappa(a, b, Eigen::Vector3d(2, 0, 0)), 0.0, 1e-12);
+    // Right isosceles: angles 90, 45, 45 -> 4 sin90 sin45 sin45 / (1 + 2 sin45)
+    const double s = std::sqrt(0.5), expected = 4 * s * s / (1 + 2 * s);
+    EXPECT_NEAR(triangle_kappa(a, b, Eigen::Vector3d(0, 1, 0)), expected, 1e-12);
+}
+
+TEST(Geometry, TriangleAreaIsDimensionFree) {
+    Eigen::Matrix<double, 6, 1> a = Eigen::Matrix<double, 6, 1>::Zero(), b = a, c = a;
+    b[0] = 2;
+    c[4] = 3; // a right triangle in the (x0, x4) plane of R^6
+    EXPECT_NEAR(triangle_area(a, b, c), 3.0, 1e-14);
+}
+
+TEST(Geometry, BallIntersectionAreaMatchesLimits) {
+    const Eigen::Vector3d a(-10, -10, 0), b(10, -10, 0), c(0, 10, 0);
+    // Small ball inside the triangle, offset from the plane: a disk of radius sqrt(r^2 - d^2).
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 0.6), 1.0, a, b, c), M_PI * 0.64, 1e-12);
+    // Huge ball: the whole triangle.
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 0), 100.0, a, b, c), 200.0, 1e-9);
+    // Ball centred on a straight edge: half a disk.
+    const Eigen::Vector3d p(0, -10, 0);
+    EXPECT_NEAR(triangle_ball_intersection_area(p, 1.0, a, b, c), M_PI / 2, 1e-12);
+    // Far away: nothing.
+    EXPECT_EQ(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 5), 1.0, a, b, c), 0.0);
+}
+
+TEST(Geometry, PlaneFrameIsOrthonormalInTheTrianglesPlaneAndZeroWithoutArea) {
+    const Eigen::Vector3d a(1, 2, 3), b(4, 2, 7), c(0, 5, 3);
+    const PlaneFrame f = plane_frame(a, b, c);
+    EXPECT_NEAR(f.u1.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(f.u2.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(f.u1.dot(f.u2), 0.0, 1e-15);
+    EXPECT_NEAR(f.u1.cross(b - a).norm(), 0.0, 1e-14);                // u1 along b - a
+    EXPECT_GT(f.u2.dot(c - a), 0.0);                                   // u2 towards c
+    EXPECT_NEAR(f.u1.cross(f.u2).dot((b - a).cross(c - a).normalized()), 1.0, 1e-15); // in its plane
+    // Collinear corners and a repeated corner: no frame, and no area in any ball.
+    using Corners = std::array<Eigen::Vector3d, 3>;
+    for (const auto& [p, q, r] : {Corners{a, b, a + 2.0 * (b - a)}, Corners{a, a, c}}) {
+        const PlaneFrame none = plane_frame(p, q, r);
+        EXPECT_TRUE(none.u1.isZero(0.0) && none.u2.isZero(0.0));
+        EXPECT_EQ(triangle_ball_intersection_area(p, 10.0, p, q, r), 0.0);
+    }
+}
+
+TEST(Geometry, ClosestPointOnTriangleRegions) {
+    const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    EXPECT_TRUE(closest_point_on_triangle({0.2, 0.2, 5}, a, b, c).isApprox(Eigen::Vector3d(0.2, 0.2, 0)));
+    EXPECT_TRUE(closest_point_on_triangle({-1, -1, 0}, a, b, c).isApprox(a));
+    EXPECT_TRUE(closest_point_on_triangle({0.5, -3, 1}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0, 0)));
+    EXPECT_TRUE(closest_point_on_triangle({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));
+}
+
+TEST(Geometry, ClosestPointOnSegmentRegions) {
+    const Eigen::Vector3d a(0.1, 0.7, -0.3), b(2.3, -1.9, 0.6);
+    EXPECT_EQ(closest_point_on_segment({-5, 9, -4}, a, b), a); // beyond an end: the end point itself
+    EXPECT_EQ(closest_point_on_segment({9, -9, 5}, a, b), b);
+    const Eigen::Vector3d mid = 0.5 * (a + b), off = (b - a).cross(Eigen::Vector3d(0, 0, 1));
+    const Eigen::Vector3d p = closest_point_on_segment(mid + 0.5 * off, a, b);
+    EXPECT_NEAR((p - mid).norm(), 0.0, 1e-14);
+    EXPECT_EQ(closest_point_on_segment({1, 1, 1}, a, a), a); // degenerate segment
+}
+
+TEST(Mesh, EulerCharacteristicOfBuiltShapes) {
+    EXPECT_EQ(euler_characteristic(test::make_icosphere(2)), 2);
+    EXPECT_EQ(euler_characteristic(test::make_torus(1.0, 0.3, 24, 12)), 0);
+    EXPECT_EQ(euler_characteristic(test::make_cube(1.0, 3)), 2);
+    EXPECT_NEAR(surface_area(test::make_cube(1.0, 3)), 24.0, 1e-12);
+}
+
+TEST(Mesh, EdgeCountsAndUsesAreSortedPairsWithTheirTriangles) {
+    auto expect_counts = [](const Triangles& t) {
+        std::map<std::pair<int32_t, int32_t>, int> expected; // counted from scratch
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                ++expected[{std::min(t(f, j), t(f, (j + 1) % 3)), std::max(t(f, j), t(f, (j + 1) % 3))}];
+        const std::vector<EdgeCount> got = edge_counts(t);
+        ASSERT_EQ(got.size(), expected.size());
+        auto it = expected.begin();
+        for (const EdgeCount& e : got) {
+            EXPECT_EQ(std::make_pair(e.a, e.b), it->first);
+            EXPECT_EQ(e.count, it->second);
+            ++it;
+        }
+    };
+    // edge_uses: the same edges, each with the sides (3 f + j) of the live triangles that run
+    // along it, in increasing order; every other row is left out (live[f] = 0).
+    auto expect_uses = [](const Triangles& t, const std::vector<char>& live) {
+        std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>> expected;
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            for (int j = 0; j < 3; ++j)
+                if (live.empty() || live[f])
+                    expected[{std::min(t(f, j), t(f, (j + 1) % 3)), std::max(t(f, j), t(f, (j + 1) % 3))}].push_back(
+                        static_cast<int32_t>(3 * f + j));
+        const EdgeUses got = edge_uses(t, live);
+        ASSERT_EQ(got.size(), static_cast<long>(expected.size()));
+        ASSERT_EQ(got.uses.offsets.size(), expected.size() + 1);
+        auto it = expected.begin();
+        for (long e = 0; e < got.size(); ++e, ++it) {
+            EXPECT_EQ(std::make_pair(got.a[e], got.b[e]), it->first);
+            EXPECT_EQ(std::vector<int32_t>(got.uses.begin(e), got.uses.end(e)), it->second) << e;
+        }
+    };
+    auto expect_both = [&](const Triangles& t) {
+        expect_counts(t);
+        expect_uses(t, {});
+        std::vector<char> odd(static_cast<size_t>(t.rows()), 0);
+        for (size_t f = 1; f < odd.size(); f += 2) odd[f] = 1;
+        expect_uses(t, odd);
+    };
+    expect_both(test::make_torus(1.0, 0.3, 12, 6).triangles);
+    Triangles fin(4, 3); // three triangles on the edge {0, 1}, and one with a repeated index
+    fin << 0, 1, 2, 1, 0, 3, 0, 1, 4, 4, 4, 0;
+    expect_both(fin);
+    fin(2, 2) = 1'000'000; // an index far beyond the triangle count: the other code path
+    expect_both(fin);
+    // Listed in lexicographic order, as the restricted Delaunay triangulation lists them.
+    Triangles sorted = test::make_icosphere(3).triangles;
+    std::vector<std::array<int32_t, 3>> rows(static_cast<size_t>(sorted.rows()));
+    for (Eigen::Index f = 0; f < sorted.rows(); ++f) rows[f] = {sorted(f, 0), sorted(f, 1), sorted(f, 2)};
+    std::sort(rows.begin(), rows.end());
+    for (Eigen::Index f = 0; f < sorted.rows(); ++f) sorted.row(f) << rows[f][0], rows[f][1], rows[f][2];
+    expect_both(sorted);
+    EXPECT_TRUE(edge_counts(Triangles(0, 3)).empty());
+    EXPECT_EQ(edge_uses(Triangles(0, 3)).size(), 0);
+    EXPECT_EQ(edge_uses(Triangles(0, 3)).uses.offsets, std::vector<int32_t>{0});
+    Triangles negative(1, 3);
+    negative << 0, -1, 2;
+    EXPECT_THROW(edge_uses(negative), InvalidInput);
+    EXPECT_THROW(edge_counts(negative), InvalidInput);
+    EXPECT_THROW(edge_uses(fin, std::vector<char>(3, 1)), InvalidInput); // 4 triangles, 3 flags
+}
+
+// A vertex far from the rest (a corrupt coordinate) is refused with its coordinates; a part of any
+// size, or two parts far apart, is not: the test is of the bounding box against the median edge.
+TEST(Mesh, CheckExtentRefusesAVertexFarFromTheRest) {
+    Mesh sphere = test::make_icosphere(2); // unit radius, median edge about 0.3
+    EXPECT_NO_THROW(check_extent(sphere, "input"));
+    for (double scale : {1e-12, 1e12}) {
+        Mesh scaled = sphere;
+        scaled.points *= scale;
+        EXPECT_NO_THROW(check_extent(scaled, "input")) << scale;
+    }
+    Mesh apart = sphere; // a second sphere 1e8 away: 3e8 median edges, accepted
+    apart.points.rowwise() += Eigen::RowVector3d(1e8, 0.0, 0.0);
+    EXPECT_NO_THROW(check_extent(test::joined(sphere, apart), "input"));
+
+    Mesh corrupt = sphere;
+    corrupt.points(7, 1) = -4e9; // 1.3e10 median edges from the rest
+    try {
+        check_extent(corrupt, "input");
+        ADD_FAILURE() << "a vertex 4e9 away from a unit sphere is accepted";
+    } catch (const InvalidInput& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("input mesh spans 4e+09"), std::string::npos) << message;
+        EXPECT_NE(message.find(", -4e+09, "), std::string::npos) << message; // its coordinates
+        EXPECT_NE(message.find("far from the rest"), std::string::npos) << message;
+    }
+}

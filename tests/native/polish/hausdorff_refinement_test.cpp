@@ -1,0 +1,166 @@
+// Inserting the input's farthest points: a sharp edge cut off by a chamfer (edge crunching,
+// Section 6.2.2) gets its crease back; a mesh that already lies on its input is left alone.
+#include "liftremesh/exceptions.h"
+#include "liftremesh/measure/quality.h"
+#include "liftremesh/polish/hausdorff_refinement.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace liftremesh;
+
+namespace {
+
+// Rows of points across columns y = 0, s, ..., n s, joined strip by strip into an oriented
+// surface: row r and row r + 1 make a strip of 2 n triangles.
+Mesh strips(const std::vector<std::vector<Eigen::Vector3d>>& rows) {
+    const int columns = static_cast<int>(rows[0].size());
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& row : rows) pts.insert(pts.end(), row.begin(), row.end());
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int r = 0; r + 1 < static_cast<int>(rows.size()); ++r)
+        for (int i = 0; i + 1 < columns; ++i) {
+            const int32_t a = r * columns + i, b = a + 1, c = a + columns + 1, d = a + columns;
+            tris.push_back({a, b, c});
+            tris.push_back({a, c, d});
+        }
+    return test::make_mesh(pts, tris);
+}
+
+// A row of points along y at the given x and z.
+std::vector<Eigen::Vector3d> row(double x, double z, int n, double s) {
+    std::vector<Eigen::Vector3d> r;
+    for (int i = 0; i <= n; ++i) r.emplace_back(x, i * s, z);
+    return r;
+}
+
+constexpr int kColumns = 8;
+constexpr double kSpacing = 0.25;
+
+// An L: the floor z = 0 (0 <= x <= 1) and the wall x = 0 (0 <= z <= 1), meeting at a 90 degree
+// crease along y, in four triangles.
+Mesh crease_input() { return strips({row(1, 0, 1, kColumns * kSpacing), row(0, 0, 1, kColumns * kSpacing), row(0, 1, 1, kColumns * kSpacing)}); }
+
+// The same L meshed at edge length kSpacing with no vertex on the crease: its two rows next
+// to it, at x = 0.2 and z = 0.2, are joined across it by a chamfer 0.14 deep.
+Mesh chamfered() {
+    return strips({row(1, 0, kColumns, kSpacing), row(0.6, 0, kColumns, kSpacing), row(0.2, 0, kColumns, kSpacing),
+                   row(0, 0.2, kColumns, kSpacing), row(0, 0.6, kColumns, kSpacing), row(0, 1, kColumns, kSpacing)});
+}
+
+// Largest distance from points along the crease to the mesh.
+double crease_gap(const Mesh& m) {
+    const AabbTree tree(m);
+    double worst = 0.0;
+    for (int i = 0; i <= 100; ++i)
+        worst = std::max(worst, std::sqrt(tree.closest(Eigen::Vector3d(0, i * kColumns * kSpacing / 100.0, 0)).squared_distance));
+    return worst;
+}
+
+HausdorffRefinementParams params_for(double h) {
+    HausdorffRefinementParams p;
+    p.tolerance = 0.15 * h;
+    p.sample_spacing = 0.5 * h;
+    return p;
+}
+
+} // namespace
+
+TEST(HausdorffRefinement, ChamferedCreaseGetsItsCreaseBack) {
+    const Mesh input = crease_input();
+    Mesh m = chamfered();
+    const test::Topology before = test::topology(m);
+    const double kappa_before = test::min_kappa(m);
+    const double gap_before = crease_gap(m);
+    ASSERT_NEAR(gap_before, 0.2 / std::sqrt(2.0), 1e-9);
+    const HausdorffRefinementParams p = params_for(kSpacing);
+
+    const HausdorffRefinementStats stats = refine_towards_input(m, input, p);
+
+    EXPECT_GE(stats.inserted, kColumns);
+    EXPECT_GT(stats.flipped, 0); // the chamfer's diagonals turn to run along the crease
+    EXPECT_EQ(m.points.rows(), chamfered().points.rows() + stats.inserted);
+    // Every point of the crease is within the tolerance now, and so is the whole input.
+    EXPECT_LE(crease_gap(m), p.tolerance);
+    const DistanceStats d = hausdorff_distance(input, m, 20000, 3);
+    EXPECT_LE(d.hausdorff, p.tolerance);
+    // Splits and flips only: the same oriented surface with a boundary, no worse triangle
+    // than the floor or than the mesh had. The crease's two ends split the boundary edges
+    // that cut them off.
+    const test::Topology after = test::topology(m);
+    EXPECT_TRUE(after.oriented_manifold());
+    EXPECT_EQ(after.chi, before.chi);
+    long on_boundary = 0;
+    for (Eigen::Index v = chamfered().points.rows(); v < m.points.rows(); ++v)
+        if (m.points(v, 1) == 0.0 || m.points(v, 1) == kColumns * kSpacing) ++on_boundary;
+    EXPECT_EQ(on_boundary, 2);
+    EXPECT_EQ(after.boundary_edges, before.boundary_edges + on_boundary);
+    EXPECT_GE(test::min_kappa(m), std::min(kappa_before, p.kappa_floor));
+}
+
+TEST(HausdorffRefinement, FloorOnKappaStopsInsertionsThatMakeSlivers) {
+    const Mesh input = crease_input();
+    Mesh m = chamfered();
+    HausdorffRefinementParams p = params_for(kSpacing);
+    p.kappa_floor = 0.99; // no split of these triangles reaches it
+    const HausdorffRefinementStats stats = refine_towards_input(m, input, p);
+    EXPECT_EQ(stats.inserted, 0);
+    EXPECT_EQ(m.triangles, chamfered().triangles);
+    EXPECT_NEAR(crease_gap(m), 0.2 / std::sqrt(2.0), 1e-9);
+}
+
+TEST(HausdorffRefinement, MeshOnItsInputIsLeftAsItIs) {
+    // A finer meshing of the same cube: every input point lies on it.
+    const Mesh input = test::make_cube(0.5, 1);
+    Mesh m = test::make_cube(0.5, 5);
+    const Mesh original = m;
+    const HausdorffRefinementStats stats = refine_towards_input(m, input, params_for(0.2));
+    EXPECT_EQ(stats.inserted, 0);
+    EXPECT_EQ(stats.flipped, 0);
+    EXPECT_EQ(m.points, original.points);
+    EXPECT_EQ(m.triangles, original.triangles);
+}
+
+TEST(HausdorffRefinement, BadArgumentsAreRejected) {
+    const Mesh input = crease_input();
+    Mesh m = chamfered();
+    HausdorffRefinementParams p = params_for(kSpacing);
+    p.tolerance = 0.0;
+    EXPECT_THROW(refine_towards_input(m, input, p), InvalidInput);
+    p = params_for(kSpacing);
+    p.sample_spacing = std::nan("");
+    EXPECT_THROW(refine_towards_input(m, input, p), InvalidInput);
+    Mesh broken = chamfered();
+    broken.triangles(0, 0) = 1000;
+    EXPECT_THROW(refine_towards_input(broken, input, params_for(kSpacing)), InvalidInput);
+    Mesh empty;
+    EXPECT_EQ(refine_towards_input(empty, input, params_for(kSpacing)).inserted, 0);
+}
+
+TEST(HausdorffRefinement, CapAndLargestDistanceLimitWhatIsInserted) {
+    const Mesh input = crease_input();
+    HausdorffRefinementParams p = params_for(kSpacing);
+    p.max_inserted = 3;
+    Mesh capped = chamfered();
+    EXPECT_EQ(refine_towards_input(capped, input, p).inserted, 3);
+    EXPECT_EQ(capped.points.rows(), chamfered().points.rows() + 3);
+    // The chamfer is 0.14 deep: a largest distance of 0.1 takes its crease for a lost part;
+    // in one round only points of the input's faces nearer than that to the chamfer come in
+    // (a later round measures against the mesh those made).
+    p = params_for(kSpacing);
+    p.max_distance = 0.1;
+    p.rounds = 1;
+    Mesh far = chamfered();
+    refine_towards_input(far, input, p);
+    const AabbTree before(chamfered());
+    for (Eigen::Index v = chamfered().points.rows(); v < far.points.rows(); ++v)
+        EXPECT_LE(before.closest(far.points.row(v).transpose()).squared_distance, 0.1 * 0.1) << v;
+    EXPECT_GT(far.points.rows(), chamfered().points.rows()); // some did come in
+    p.max_distance = 0.0;
+    EXPECT_THROW(refine_towards_input(far, input, p), InvalidInput);
+}

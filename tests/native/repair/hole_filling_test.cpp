@@ -1,0 +1,487 @@
+#include "liftremesh/exceptions.h"
+#include "liftremesh/repair/hole_filling.h"
+#include "liftremesh/repair/repair.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace liftremesh;
+using namespace liftremesh::test;
+
+namespace {
+
+// Whether every loop edge loop[i] -> loop[i+1] is traversed by a triangle the other way,
+// b -> a (the documented convention), and no vertex repeats within a loop.
+void expect_loops_follow_convention(const Mesh& m, const std::vector<std::vector<int32_t>>& loops) {
+    std::set<std::pair<int32_t, int32_t>> directed;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) directed.insert({m.triangles(f, j), m.triangles(f, (j + 1) % 3)});
+    for (const auto& loop : loops) {
+        EXPECT_EQ(std::set<int32_t>(loop.begin(), loop.end()).size(), loop.size()) << "loop is not simple";
+        for (size_t i = 0; i < loop.size(); ++i) {
+            const int32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+            EXPECT_TRUE(directed.count({b, a})) << a << " -> " << b;
+            EXPECT_FALSE(directed.count({a, b})) << a << " -> " << b;
+        }
+    }
+}
+
+// Vertex of the mesh with the given valence (number of triangles around it).
+int32_t vertex_with_valence(const Mesh& m, int valence) {
+    std::vector<int> count(static_cast<size_t>(m.points.rows()), 0);
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) ++count[m.triangles(f, j)];
+    for (size_t v = 0; v < count.size(); ++v)
+        if (count[v] == valence) return static_cast<int32_t>(v);
+    return -1;
+}
+
+// A disk of k triangles along the great-circle arc from p to q: grown from the triangle nearest
+// p by adding, each time, the neighbour nearest the arc among those that share exactly one
+// edge with the disk and whose third vertex is new (so the region stays a topological disk).
+std::set<Eigen::Index> band(const Mesh& m, const Eigen::Vector3d& p, const Eigen::Vector3d& q, size_t k) {
+    auto distance_to_arc = [&](Eigen::Index f) {
+        const Eigen::Vector3d c = ((corner(m, f, 0) + corner(m, f, 1) + corner(m, f, 2)) / 3.0).normalized();
+        double best = 1e9;
+        for (int s = 0; s <= 50; ++s) best = std::min(best, (c - (p + (q - p) * s / 50.0).normalized()).norm());
+        return best;
+    };
+    Eigen::Index seed = 0;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        if ((corner(m, f, 0) - p.normalized()).norm() < (corner(m, seed, 0) - p.normalized()).norm()) seed = f;
+    std::set<Eigen::Index> disk = {seed};
+    std::set<int32_t> verts = {m.triangles(seed, 0), m.triangles(seed, 1), m.triangles(seed, 2)};
+    while (disk.size() < k) {
+        Eigen::Index best = -1;
+        double best_d = 1e9;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+            if (disk.count(f)) continue;
+            int in = 0;
+            for (int j = 0; j < 3; ++j) in += verts.count(m.triangles(f, j)) ? 1 : 0;
+            if (in != 2) continue; // exactly one shared edge... if the two shared vertices form an edge of the disk
+            bool shares_edge = false;
+            for (Eigen::Index g : disk) {
+                int common = 0;
+                for (int i = 0; i < 3; ++i)
+                    for (int j = 0; j < 3; ++j) common += m.triangles(f, i) == m.triangles(g, j);
+                shares_edge = shares_edge || common == 2;
+            }
+            if (!shares_edge) continue;
+            const double d = distance_to_arc(f);
+            if (d < best_d) {
+                best_d = d;
+                best = f;
+            }
+        }
+        if (best < 0) break;
+        disk.insert(best);
+        for (int j = 0; j < 3; ++j) verts.insert(m.triangles(best, j));
+    }
+    return disk;
+}
+
+// An annulus of m quads between a loop at radius 1 and one at radius 1.6, both on the saddle
+// z = amplitude * (r^2 / 1) cos(2 theta), facing +z. Vertices 0..m-1 are the inner loop.
+Mesh saddle_annulus(int m, double amplitude) {
+    std::vector<Eigen::Vector3d> pts;
+    for (double r : {1.0, 1.6})
+        for (int i = 0; i < m; ++i) {
+            const double t = 2 * M_PI * i / m;
+            pts.emplace_back(r * std::cos(t), r * std::sin(t), amplitude * r * r * std::cos(2 * t));
+        }
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int i = 0; i < m; ++i) {
+        const int32_t in0 = i, in1 = (i + 1) % m, out0 = m + i, out1 = m + (i + 1) % m;
+        tris.push_back({in0, out0, out1});
+        tris.push_back({in0, out1, in1});
+    }
+    return make_mesh(pts, tris);
+}
+
+bool contains(const std::vector<int32_t>& loop, int32_t v) { return std::find(loop.begin(), loop.end(), v) != loop.end(); }
+
+} // namespace
+
+TEST(HoleFilling, ClosedMeshHasNoLoopAndNothingToFill) {
+    Mesh m = make_icosphere(2);
+    EXPECT_TRUE(boundary_loops(m).empty());
+    EXPECT_EQ(fill_holes(m), 0);
+}
+
+TEST(HoleFilling, LoopRunsOppositeToTheTriangleOnEachEdge) {
+    const Mesh sphere = make_icosphere(3);
+    const int32_t v = vertex_with_valence(sphere, 6);
+    Mesh m = without_triangles(sphere, triangles_at(sphere, v));
+    const auto loops = boundary_loops(m);
+    ASSERT_EQ(loops.size(), 1u);
+    EXPECT_EQ(loops[0].size(), 6u);
+    expect_loops_follow_convention(m, loops);
+
+    // A removed triangle comes back as its own loop, in its own orientation (up to rotation).
+    Mesh one = without_triangles(sphere, {42});
+    const auto l = boundary_loops(one);
+    ASSERT_EQ(l.size(), 1u);
+    ASSERT_EQ(l[0].size(), 3u);
+    const std::array<int32_t, 3> removed = {sphere.triangles(42, 0), sphere.triangles(42, 1), sphere.triangles(42, 2)};
+    int shift = -1;
+    for (int s = 0; s < 3; ++s)
+        if (l[0][s] == removed[0]) shift = s;
+    ASSERT_GE(shift, 0);
+    for (int j = 0; j < 3; ++j) EXPECT_EQ(l[0][(shift + j) % 3], removed[j]);
+}
+
+TEST(HoleFilling, SingleTriangleHoleIsClosed) {
+    const Mesh sphere = make_icosphere(3);
+    Mesh m = without_triangles(sphere, {100});
+    const Eigen::Index before = m.triangles.rows();
+    EXPECT_EQ(fill_holes(m), 1);
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(m.triangles.rows(), before + 1);
+    EXPECT_GT(min_kappa(m, before), 0.2);
+    EXPECT_EQ(m.points, sphere.points); // no vertex added or moved
+}
+
+TEST(HoleFilling, VertexFanHoleIsClosedWithGoodTriangles) {
+    const Mesh sphere = make_icosphere(3);
+    for (int valence : {5, 6}) {
+        const int32_t v = vertex_with_valence(sphere, valence);
+        ASSERT_GE(v, 0);
+        Mesh m = without_triangles(sphere, triangles_at(sphere, v));
+        const Eigen::Index before = m.triangles.rows();
+        EXPECT_EQ(fill_holes(m), 1);
+        const Topology t = topology(m);
+        EXPECT_TRUE(t.closed_oriented_manifold()) << "valence " << valence;
+        EXPECT_EQ(t.chi, 2);
+        EXPECT_EQ(m.triangles.rows(), before + valence - 2);
+        EXPECT_GT(min_kappa(m, before), 0.2);
+        EXPECT_EQ(facing_inward(m, Eigen::Vector3d::Zero(), before), 0);
+    }
+}
+
+TEST(HoleFilling, BandHoleIsClosedWithGoodTriangles) {
+    const Mesh sphere = make_icosphere(3);
+    const auto drop = band(sphere, Eigen::Vector3d(1, 0, 0.1), Eigen::Vector3d(0.3, 1, -0.1), 20);
+    Mesh m = without_triangles(sphere, drop);
+    const auto loops = boundary_loops(m);
+    ASSERT_EQ(loops.size(), 1u) << "the band should be one disk-shaped hole";
+    const Eigen::Index before = m.triangles.rows();
+    EXPECT_EQ(fill_holes(m), 1);
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(m.triangles.rows(), before + static_cast<Eigen::Index>(loops[0].size()) - 2);
+    EXPECT_GT(min_kappa(m, before), 0.2);
+    EXPECT_EQ(facing_inward(m, Eigen::Vector3d::Zero(), before), 0);
+}
+
+TEST(HoleFilling, HoleLargerThanTheSurfaceLeftIsFilledFacingOutward) {
+    // Only a cap (z > 0.7) of the sphere is left: the hole winds clockwise about the cap's
+    // normals, and the flat fill must face down, closing a lens. The cap's boundary has 8
+    // "teeth" (triangles with two boundary edges) whose third edge joins two loop vertices, so
+    // that chord is closed to the fill. With no tooth left, the planar CDT is free; with 2,
+    // ear clipping gets stuck on them and the exact planar triangulation must take over; with
+    // all 8, no flat triangulation avoids them: the fill may fold, but it must still close.
+    for (int teeth_left : {0, 2, 8}) {
+        const Mesh sphere = make_icosphere(3);
+        std::set<Eigen::Index> drop;
+        for (Eigen::Index f = 0; f < sphere.triangles.rows(); ++f)
+            if ((corner(sphere, f, 0) + corner(sphere, f, 1) + corner(sphere, f, 2)).z() / 3.0 < 0.7) drop.insert(f);
+        Mesh m = without_triangles(sphere, drop);
+        std::map<std::pair<int32_t, int32_t>, int> uses;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = m.triangles(f, j), b = m.triangles(f, (j + 1) % 3);
+                ++uses[{std::min(a, b), std::max(a, b)}];
+            }
+        std::set<Eigen::Index> teeth;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+            int boundary = 0;
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = m.triangles(f, j), b = m.triangles(f, (j + 1) % 3);
+                boundary += uses[{std::min(a, b), std::max(a, b)}] == 1;
+            }
+            if (boundary == 2) teeth.insert(f);
+        }
+        ASSERT_EQ(teeth.size(), 8u);
+        for (int k = 0; k < teeth_left; ++k) teeth.erase(teeth.begin());
+        m = without_triangles(m, teeth);
+        ASSERT_EQ(boundary_loops(m).size(), 1u);
+        const Eigen::Index before = m.triangles.rows();
+        EXPECT_EQ(fill_holes(m), 1);
+        const Topology t = topology(m);
+        EXPECT_TRUE(t.closed_oriented_manifold()) << teeth_left << " teeth";
+        EXPECT_EQ(t.chi, 2);
+        if (teeth_left < 8)
+            for (Eigen::Index f = before; f < m.triangles.rows(); ++f)
+                EXPECT_LT((corner(m, f, 1) - corner(m, f, 0)).cross(corner(m, f, 2) - corner(m, f, 0)).z(), 0.0)
+                    << teeth_left << " teeth";
+    }
+}
+
+TEST(HoleFilling, SeveralHolesAreCountedAndAllClosed) {
+    const Mesh sphere = make_icosphere(3);
+    std::set<Eigen::Index> drop = triangles_at(sphere, 0); // valence 5 at the icosahedron vertex 0
+    for (Eigen::Index f : {300, 700, 1100}) drop.insert(f);
+    const auto far_band = band(sphere, Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(0.5, 0, -0.8), 12);
+    drop.insert(far_band.begin(), far_band.end());
+    Mesh m = without_triangles(sphere, drop);
+    const auto loops = boundary_loops(m);
+    EXPECT_EQ(fill_holes(m), static_cast<long>(loops.size()));
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+}
+
+TEST(HoleFilling, TorusKeepsItsGenus) {
+    const Mesh torus = make_torus(2.0, 0.7, 32, 16);
+    ASSERT_EQ(topology(torus).chi, 0);
+    std::set<Eigen::Index> drop = triangles_at(torus, 5);
+    for (Eigen::Index f : {200, 201, 202}) drop.insert(f);
+    Mesh m = without_triangles(torus, drop);
+    EXPECT_GE(fill_holes(m), 1);
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 0);
+}
+
+TEST(HoleFilling, PredicateLeavesTheOuterBoundaryOfAPlanarGridOpen) {
+    // 10 x 10 grid in z = 0, facing +z, without the 2 x 2 cells around its centre vertex.
+    const int n = 10;
+    std::vector<Eigen::Vector3d> pts;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) pts.emplace_back(i, j, 0.0);
+    auto id = [&](int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); };
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            if ((i == 4 || i == 5) && (j == 4 || j == 5)) continue;
+            tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    Mesh m = make_mesh(pts, tris);
+    ASSERT_EQ(boundary_loops(m).size(), 2u);
+    ASSERT_EQ(topology(m).chi, 0);
+    const int32_t corner_vertex = id(0, 0);
+    const Eigen::Index before = m.triangles.rows();
+    long asked = 0;
+    const long filled = fill_holes(m, [&](const std::vector<int32_t>& loop) {
+        ++asked;
+        return !contains(loop, corner_vertex);
+    });
+    EXPECT_EQ(asked, 2);
+    EXPECT_EQ(filled, 1);
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, 1);
+    const auto left = boundary_loops(m);
+    ASSERT_EQ(left.size(), 1u);
+    EXPECT_TRUE(contains(left[0], corner_vertex));
+    EXPECT_EQ(m.triangles.rows(), before + 6); // 8 loop vertices -> 6 triangles
+    for (Eigen::Index f = before; f < m.triangles.rows(); ++f) {
+        const Eigen::Vector3d nrm = (corner(m, f, 1) - corner(m, f, 0)).cross(corner(m, f, 2) - corner(m, f, 0));
+        EXPECT_GT(nrm.z(), 0.0) << "new triangle " << f << " is flat or faces down";
+        EXPECT_EQ(nrm.x(), 0.0);
+        EXPECT_EQ(nrm.y(), 0.0);
+    }
+    EXPECT_GT(min_kappa(m, before), 0.2);
+}
+
+TEST(HoleFilling, ConvexPlanarHoleGetsTheDelaunayTriangulation) {
+    // A convex hole in a plane: its constrained Delaunay triangulation is the Delaunay
+    // triangulation of the loop vertices, so no loop vertex may lie inside the circumcircle of a
+    // new triangle. The loop is an ellipse with jittered radii, tilted out of the coordinate
+    // planes so that the projection is not trivial.
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> jitter(-0.04, 0.04);
+    const int n = 40;
+    const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    std::vector<Eigen::Vector2d> flat;
+    for (double scale : {1.0, 1.5})
+        for (int i = 0; i < n; ++i) {
+            const double t = 2 * M_PI * (i + (scale > 1.0 ? 0.5 : jitter(rng) * 3)) / n;
+            const double r = scale * (scale > 1.0 ? 1.0 : 1.0 + jitter(rng));
+            flat.emplace_back(2.0 * r * std::cos(t), r * std::sin(t));
+        }
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& x : flat) pts.push_back(tilt * Eigen::Vector3d(x.x(), x.y(), 0.0));
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int i = 0; i < n; ++i) {
+        const int32_t in0 = i, in1 = (i + 1) % n, out0 = n + i, out1 = n + (i + 1) % n;
+        tris.push_back({in0, out0, out1});
+        tris.push_back({in0, out1, in1});
+    }
+    Mesh m = make_mesh(pts, tris);
+    const Eigen::Index before = m.triangles.rows();
+    ASSERT_EQ(fill_holes(m, [](const std::vector<int32_t>& loop) { return contains(loop, 0); }), 1);
+    ASSERT_EQ(m.triangles.rows(), before + n - 2);
+    EXPECT_TRUE(topology(m).oriented_manifold());
+    long violations = 0;
+    for (Eigen::Index f = before; f < m.triangles.rows(); ++f) {
+        const Eigen::Vector2d a = flat[m.triangles(f, 0)], b = flat[m.triangles(f, 1)], c = flat[m.triangles(f, 2)];
+        // Circumcentre of (a, b, c).
+        const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+        ASSERT_GT(d, 0.0) << "new triangle " << f << " is not counter-clockwise in the plane";
+        const Eigen::Vector2d centre(
+            (a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) + c.squaredNorm() * (a.y() - b.y())) / d,
+            (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) + c.squaredNorm() * (b.x() - a.x())) / d);
+        const double r2 = (a - centre).squaredNorm();
+        for (int i = 0; i < n; ++i)
+            if ((flat[i] - centre).squaredNorm() < r2 * (1 - 1e-9)) ++violations;
+    }
+    EXPECT_EQ(violations, 0);
+}
+
+TEST(HoleFilling, SaddleLoopIsFilledWithoutNonManifoldEdges) {
+    // Mild saddle: the projection onto the PCA plane is simple. Strong saddle: it folds (points
+    // coincide in projection), so the 3D fallback must do the job.
+    for (double amplitude : {0.3, 2.5}) {
+        for (int count : {16, 17}) {
+            Mesh m = saddle_annulus(count, amplitude);
+            const Eigen::Index before = m.triangles.rows();
+            const long filled = fill_holes(m, [](const std::vector<int32_t>& loop) { return contains(loop, 0); });
+            EXPECT_EQ(filled, 1) << "amplitude " << amplitude << ", " << count << " vertices";
+            const Topology t = topology(m);
+            EXPECT_TRUE(t.oriented_manifold()) << "amplitude " << amplitude;
+            EXPECT_EQ(t.chi, 1);
+            EXPECT_EQ(m.triangles.rows(), before + count - 2);
+            const auto left = boundary_loops(m);
+            ASSERT_EQ(left.size(), 1u);
+            EXPECT_FALSE(contains(left[0], 0));
+        }
+    }
+}
+
+TEST(HoleFilling, PinchedBoundaryIsSplitIntoSimpleLoops) {
+    // Two triangles of a valence-6 fan that share only the centre vertex: the boundary passes
+    // through the centre twice.
+    const Mesh sphere = make_icosphere(3);
+    const int32_t v = vertex_with_valence(sphere, 6);
+    const auto fan = triangles_at(sphere, v);
+    const Eigen::Index first = *fan.begin();
+    Eigen::Index opposite = -1;
+    for (Eigen::Index f : fan) {
+        int shared = 0;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) shared += sphere.triangles(f, i) == sphere.triangles(first, j);
+        if (shared == 1) opposite = f;
+    }
+    ASSERT_GE(opposite, 0);
+    Mesh m = without_triangles(sphere, {first, opposite});
+    ASSERT_EQ(topology(m).nonmanifold_vertices, 1);
+    const auto loops = boundary_loops(m);
+    ASSERT_EQ(loops.size(), 2u);
+    for (const auto& loop : loops) {
+        EXPECT_EQ(loop.size(), 3u);
+        EXPECT_TRUE(contains(loop, v));
+    }
+    expect_loops_follow_convention(m, loops);
+    EXPECT_EQ(fill_holes(m), 2);
+    const Topology t = topology(m);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+}
+
+TEST(HoleFilling, ThousandVertexLoopsAreFilled) {
+    // An open tube: two planar loops of 1000 vertices, one circular (all co-circular, the
+    // hardest case for the Delaunay flips), one star-shaped and strongly non-convex. Plus a
+    // 1000-vertex strong saddle that needs the 3D fallback.
+    const int n = 1000;
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < n; ++i) {
+        const double t = 2 * M_PI * i / n;
+        pts.emplace_back(std::cos(t), std::sin(t), 0.0);
+    }
+    for (int i = 0; i < n; ++i) {
+        const double t = 2 * M_PI * i / n, r = 1.0 + 0.4 * std::sin(37 * t);
+        pts.emplace_back(r * std::cos(t), r * std::sin(t), 1.0);
+    }
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int i = 0; i < n; ++i) {
+        const int32_t a = i, b = (i + 1) % n, c = n + (i + 1) % n, d = n + i;
+        tris.push_back({a, b, c});
+        tris.push_back({a, c, d});
+    }
+    Mesh tube = make_mesh(pts, tris);
+    ASSERT_EQ(boundary_loops(tube).size(), 2u);
+    EXPECT_EQ(fill_holes(tube), 2);
+    Topology t = topology(tube);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+
+    Mesh saddle = saddle_annulus(n, 2.5);
+    EXPECT_EQ(fill_holes(saddle, [](const std::vector<int32_t>& loop) { return contains(loop, 0); }), 1);
+    t = topology(saddle);
+    EXPECT_TRUE(t.oriented_manifold());
+    EXPECT_EQ(t.chi, 1);
+}
+
+TEST(HoleFilling, NeverCreatesAnEdgeTheMeshAlreadyHas) {
+    // Two triangles forming a square: its loop's short diagonal is taken, so the fill must
+    // use the other one (a flat, two-sided pillow, but a valid closed manifold).
+    Mesh quad = make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    EXPECT_EQ(fill_holes(quad), 1);
+    EXPECT_TRUE(topology(quad).closed_oriented_manifold());
+
+    // A lone triangle: filling its loop would duplicate it, so it is left alone.
+    Mesh lone = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+    EXPECT_EQ(fill_holes(lone), 0);
+    EXPECT_EQ(lone.triangles.rows(), 1);
+
+    // A tetrahedron missing two faces: the loop 0-2-1-3 has the diagonal 0-1 already, so
+    // the fill must take 2-3, which closes the tetrahedron.
+    Mesh tet = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}});
+    const auto loops = boundary_loops(tet);
+    ASSERT_EQ(loops.size(), 1u);
+    ASSERT_EQ(loops[0].size(), 4u);
+    EXPECT_EQ(fill_holes(tet), 1);
+    const Topology t = topology(tet);
+    EXPECT_TRUE(t.closed_oriented_manifold());
+    EXPECT_EQ(t.chi, 2);
+    EXPECT_EQ(facing_inward(tet, Eigen::Vector3d(0.25, 0.25, 0.25)), 0);
+}
+
+TEST(HoleFilling, DegenerateLoopsDoNotBreakIt) {
+    // A cone over four collinear points: its boundary loop has zero area.
+    Mesh cone = make_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {1.5, 1, 0}},
+                          {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+    ASSERT_EQ(boundary_loops(cone).size(), 1u);
+    fill_holes(cone);
+    EXPECT_TRUE(topology(cone).oriented_manifold());
+
+    // All points at one place.
+    Mesh point = make_mesh({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                           {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+    fill_holes(point);
+    EXPECT_TRUE(topology(point).oriented_manifold());
+
+    Mesh empty;
+    EXPECT_EQ(fill_holes(empty), 0);
+    EXPECT_TRUE(boundary_loops(empty).empty());
+
+    Mesh bad = make_icosphere(0);
+    bad.triangles(0, 0) = -1;
+    EXPECT_THROW(fill_holes(bad), InvalidInput);
+}
+
+TEST(HoleFilling, RepairedRandomSoupsStayOrientedManifolds) {
+    std::mt19937 rng(777);
+    for (int trial = 0; trial < 40; ++trial) {
+        const int nv = 10 + trial % 30, nf = 20 + 9 * trial;
+        Mesh m = random_soup(rng, nv, nf);
+        make_manifold(m);
+        const auto loops = boundary_loops(m);
+        expect_loops_follow_convention(m, loops);
+        const long filled = fill_holes(m);
+        EXPECT_LE(filled, static_cast<long>(loops.size()));
+        const Topology t = topology(m);
+        EXPECT_TRUE(t.oriented_manifold()) << "trial " << trial << ": " << t.nonmanifold_edges << " nm edges, "
+                                           << t.misoriented_edges << " misoriented, " << t.nonmanifold_vertices
+                                           << " nm vertices, " << t.duplicates << " duplicates";
+        EXPECT_EQ(static_cast<long>(boundary_loops(m).size()), static_cast<long>(loops.size()) - filled);
+    }
+}

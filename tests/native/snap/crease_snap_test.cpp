@@ -1,0 +1,121 @@
+// Vertices onto the input's acute creases: a knife edge cut by a row of vertices in the wedge's
+// middle plane gets the row back on the edge; a right-angled edge, not acute, is left alone.
+#include "liftremesh/exceptions.h"
+#include "liftremesh/snap/crease_snap.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "helpers.h"
+#include "topology_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace liftremesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Two faces of a wedge along the z axis, face A in the plane y = 0 (x >= 0), face B at
+// `angle_deg` from it, each `width` wide and `length` long, consistently oriented. With
+// `step` > 0 a grid of squares of that size on each face, the vertices of the shared edge moved
+// `offset` into the wedge along its bisector; with `step` 0 the input's four triangles.
+Mesh wedge(double angle_deg, double width, double length, double step = 0.0, double offset = 0.0) {
+    const double a = angle_deg * kPi / 180.0;
+    const Eigen::Vector3d dir_a(1.0, 0.0, 0.0), dir_b(std::cos(a), std::sin(a), 0.0);
+    const Eigen::Vector3d bisector = (dir_a + dir_b).normalized();
+    const int across = step > 0.0 ? static_cast<int>(std::lround(width / step)) : 1;
+    const int along = step > 0.0 ? static_cast<int>(std::lround(length / step)) : 1;
+    const double du = width / across, dz = length / along;
+    std::vector<Eigen::Vector3d> pts;
+    // Index of the point at distance i (rows) from the edge on face f, row j along it.
+    auto id = [&](int f, int i, int j) { return i == 0 ? j : (along + 1) + (f * across + (i - 1)) * (along + 1) + j; };
+    for (int j = 0; j <= along; ++j) pts.push_back(Eigen::Vector3d(0.0, 0.0, j * dz) + offset * bisector);
+    for (int f = 0; f < 2; ++f)
+        for (int i = 1; i <= across; ++i)
+            for (int j = 0; j <= along; ++j) pts.push_back(i * du * (f == 0 ? dir_a : dir_b) + Eigen::Vector3d(0.0, 0.0, j * dz));
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int f = 0; f < 2; ++f)
+        for (int i = 0; i < across; ++i)
+            for (int j = 0; j < along; ++j) {
+                const int32_t p00 = id(f, i, j), p10 = id(f, i + 1, j), p11 = id(f, i + 1, j + 1), p01 = id(f, i, j + 1);
+                if (f == 0) {
+                    tris.push_back({p00, p10, p11});
+                    tris.push_back({p00, p11, p01});
+                } else { // the other way round: the two faces use the shared edge in opposite directions
+                    tris.push_back({p00, p11, p10});
+                    tris.push_back({p00, p01, p11});
+                }
+            }
+    return test::make_mesh(pts, tris);
+}
+
+CreaseSnapParams params_for(double h) {
+    CreaseSnapParams p;
+    p.radius = 0.35 * h;
+    p.corner_radius = h;
+    p.tolerance = 0.05 * h;
+    return p;
+}
+
+} // namespace
+
+TEST(CreaseSnap, PutsTheRowOfAKnifeEdgeBackOnIt) {
+    const double h = 0.1, offset = 0.3 * h;
+    const Mesh input = wedge(30.0, 1.0, 1.0);
+    Mesh mesh = wedge(30.0, 1.0, 1.0, h, offset);
+    const int row = 11; // the edge's vertices, 0 .. 10
+    const test::Topology before = test::topology(mesh);
+    for (int j = 0; j < row; ++j) ASSERT_NEAR(mesh.points.row(j).head<2>().norm(), offset, 1e-12);
+    const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params_for(h));
+    EXPECT_EQ(stats.creases, 1);
+    EXPECT_EQ(stats.moved, row);
+    for (int j = 0; j < row; ++j) {
+        EXPECT_NEAR(mesh.points.row(j).head<2>().norm(), 0.0, 1e-12) << "vertex " << j;
+        EXPECT_NEAR(mesh.points(j, 2), j * h, 1e-9) << "vertex " << j; // onto its closest point
+    }
+    const test::Topology after = test::topology(mesh);
+    EXPECT_TRUE(after.oriented_manifold());
+    EXPECT_EQ(after.chi, before.chi);
+    EXPECT_GE(test::min_kappa(mesh), 0.45);
+}
+
+TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
+    const double h = 0.1;
+    {
+        const Mesh input = wedge(90.0, 1.0, 1.0); // the normals turn by 90 degrees: not acute
+        Mesh mesh = wedge(90.0, 1.0, 1.0, h, 0.3 * h);
+        const Mesh was = mesh;
+        const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params_for(h));
+        EXPECT_EQ(stats.creases, 0);
+        EXPECT_EQ(stats.moved, 0);
+        EXPECT_TRUE(mesh.points == was.points);
+        EXPECT_TRUE(mesh.triangles == was.triangles);
+    }
+    {
+        const Mesh input = wedge(30.0, 1.0, 1.0);
+        Mesh mesh = wedge(30.0, 1.0, 1.0, h, 0.3 * h);
+        CreaseSnapParams params = params_for(h);
+        params.tolerance = 0.5 * h; // the row cuts the edge less deep than that
+        params.corner_radius = 0.1 * h;
+        const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params);
+        EXPECT_EQ(stats.creases, 1);
+        EXPECT_EQ(stats.moved, 0);
+    }
+}
+
+TEST(CreaseSnap, RejectsBadParameters) {
+    const Mesh input = wedge(30.0, 1.0, 1.0);
+    Mesh mesh = wedge(30.0, 1.0, 1.0, 0.1, 0.03);
+    const AabbTree tree(input);
+    CreaseSnapParams p = params_for(0.1);
+    p.radius = 0.0;
+    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+    p = params_for(0.1);
+    p.tolerance = std::nan("");
+    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+    p = params_for(0.1);
+    p.min_turn_deg = 200.0;
+    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+}
