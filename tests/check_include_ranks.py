@@ -35,9 +35,10 @@ RANKS = {
     "snap": 5,
     "polish": 6,
     "measure": 7,
-    # The entry points.
+    # The entry points: the parameters, the report, the steps' settings (steps.h), the pipeline.
     "params": 8,
     "report": 8,
+    "steps": 8,
     "pipeline": 9,
 }
 

@@ -4,6 +4,7 @@
 #include "liftremesh/cvt/rvd.h"
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/params.h"
+#include "liftremesh/spatial/reference.h"
 
 #include <Eigen/Geometry>
 
@@ -264,6 +265,14 @@ private:
         return std::to_string(::getpid()) + "_" + name;
     }
     std::filesystem::path path_;
+};
+
+//! A mesh and its tree, to pass where a step takes a Reference to its input.
+struct OwnedReference {
+    explicit OwnedReference(Mesh m) : mesh(std::move(m)), tree(mesh) {}
+    Mesh mesh;
+    AabbTree tree;
+    operator Reference() const { return {mesh, tree}; }
 };
 
 //! Path of a mesh in ../shared/meshes, or "" (and the test is skipped) where it does not exist.

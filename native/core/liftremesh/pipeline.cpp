@@ -5,6 +5,7 @@
 #include "liftremesh/cvt/rvd.h"
 #include "liftremesh/cvt/sampling.h"
 #include "liftremesh/edit/edge_collapse.h"
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/lift/density.h"
 #include "liftremesh/lift/normals.h"
@@ -13,16 +14,13 @@
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/mesh/mesh_io.h"
 #include "liftremesh/mesh/solid_parts.h"
-#include "liftremesh/polish/hausdorff_refinement.h"
-#include "liftremesh/polish/quality_polish.h"
 #include "liftremesh/repair/hole_filling.h"
 #include "liftremesh/repair/patch_refinement.h"
 #include "liftremesh/repair/repair.h"
-#include "liftremesh/repair/untangle.h"
-#include "liftremesh/snap/boundary_snap.h"
-#include "liftremesh/snap/crease_snap.h"
 #include "liftremesh/spatial/neighbor_search.h"
+#include "liftremesh/spatial/reference.h"
 #include "liftremesh/spatial/self_intersection.h"
+#include "liftremesh/steps.h"
 #include "liftremesh/system/memory_budget.h"
 #include "liftremesh/system/threads.h"
 
@@ -116,10 +114,6 @@ long target_site_count(const RemeshParams& params, double area) {
 
 namespace {
 
-// How far from the input the repair's steps may take the surface where it was nearer, in input
-// units: 0.15 of the spacing (the Hausdorff refinement's tolerance, shared by the later steps).
-double repair_tolerance(double spacing, const UnitBallTransform& to_unit) { return 0.15 * spacing * to_unit.scale; }
-
 // One piece of the input (solid_parts.h), lifted and ready for its sites.
 struct Piece {
     const Mesh* input = nullptr; // the piece in input units: the whole input when it is the only piece
@@ -202,8 +196,6 @@ void share_sites(std::vector<Piece>& pieces, long wanted) {
 // untangling, which sees every piece at once), in input units; adds its counts to the report.
 Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
                   double spacing, StageClock& clock, const ProgressCallback& progress, RemeshReport& report) {
-    const Mesh& input = *piece.input;
-    const AabbTree& input_tree = *piece.tree;
     const long sites_wanted = piece.sites;
 
     clock.begin("optimize");
@@ -227,48 +219,47 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
         throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
     clock.end();
 
+    const StepSettings steps = step_settings(spacing, to_unit.scale, sites_wanted);
+    const Reference reference{*piece.input, *piece.tree};
+
+    // The triangulation made an oriented manifold without holes it should not have, in the unit
+    // ball (repair/).
     clock.begin("repair");
     const RepairStats repaired = make_manifold(out);
     report.triangles_removed += repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
     if (params.fill_holes) {
         const Eigen::Index first_fill = out.triangles.rows();
-        report.holes_filled += fill_holes(out, hole_is_artefact(*piece.unit, out.points, 1.5 * spacing)); // Section 5.2.2
-        // Vertices inside the patches, which the paper leaves empty: at most a tenth of those asked for.
-        refine_patches(out, first_fill, spacing, sites_wanted / 10);
+        report.holes_filled += fill_holes(out, hole_is_artefact(*piece.unit, out.points, steps.hole_reach)); // Section 5.2.2
+        refine_patches(out, first_fill, steps.patch_spacing, steps.patch_max_added);
     }
     if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
     report.edges_collapsed += collapse_short_edges(out);
+    clock.end();
+
+    // The surface onto the input's boundary and features, in the input's coordinates, so that
+    // snapped corners are exactly the input's (snap/, polish/hausdorff_refinement.h).
+    clock.begin("snap");
     undo_transform(to_unit, out.points);
-    // After the collapse, which may keep an interior end point of an edge at the boundary, and in
-    // the input's coordinates, so that snapped corners are exactly the input's.
-    const BoundarySnapStats snapped = snap_boundary(out, input, {}, &input_tree);
+    // After the collapse, which may keep an interior end point of an edge at the boundary.
+    const BoundarySnapStats snapped = snap_boundary(out, reference, steps.boundary_snap);
     report.boundary_vertices_snapped += snapped.moved();
     report.triangles_removed += snapped.flaps_removed;
     // Sharp edges cut off by a chamfer (edge crunching, Section 6.2.2) get their crease points;
     // after the snap, so that an open input's boundary, where the output now lies, is no witness.
-    HausdorffRefinementParams towards_input;
-    towards_input.tolerance = repair_tolerance(spacing, to_unit);
-    towards_input.sample_spacing = 0.5 * spacing * to_unit.scale;
-    towards_input.max_distance = spacing * to_unit.scale;
-    towards_input.max_inserted = sites_wanted / 100;
     report.vertices_inserted +=
-        snapped.corners_inserted + refine_towards_input(out, input, towards_input, &input_tree).inserted;
+        snapped.corners_inserted + refine_towards_input(out, reference, steps.hausdorff_refinement).inserted;
     // Knife edges, which the feature term leaves cut (crease_snap.h): after the refinement, which
     // inserts the points of their corners and of a few places.
-    CreaseSnapParams onto_creases;
-    onto_creases.radius = 0.35 * spacing * to_unit.scale;
-    onto_creases.corner_radius = spacing * to_unit.scale;
-    onto_creases.tolerance = towards_input.tolerance;
-    onto_creases.kappa_floor = towards_input.kappa_floor;
-    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, input, input_tree, onto_creases);
-    // The worst triangles raised by flips and vertex moves that keep the surface on the input.
-    QualityPolishParams polish;
-    polish.tolerance = towards_input.tolerance;
-    const QualityPolishStats polished = polish_quality(out, input_tree, polish);
+    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, steps.crease_snap);
+    clock.end();
+
+    // The worst triangles raised by flips and vertex moves that keep the surface on the input;
+    // then pairs of triangles folded shut, which no step above sees (edge_collapse.h).
+    clock.begin("polish");
+    const QualityPolishStats polished = polish_quality(out, reference, steps.quality_polish);
     report.edges_flipped += onto_crease.flipped + polished.flipped;
     report.vertices_moved += onto_crease.moved + polished.moved;
-    // Pairs of triangles folded shut, which no step above sees (edge_collapse.h).
-    report.edges_collapsed += collapse_folded_pairs(out, input, input_tree);
+    report.edges_collapsed += collapse_folded_pairs(out, reference, steps.folded_pairs).collapsed;
     clock.end();
     return out;
 }
@@ -292,7 +283,7 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
 
 // Whether a small closed piece came out as the surface it is (closed, manifold, with the Euler
 // characteristic the report expects of it, so that it raises no topology warning) and with no
-// triangle worse than its input's worst, or kappa 0.3: else its input's triangles are better.
+// triangle worse than its input's worst, or kKappaFloor: else its input's triangles are better.
 bool keeps_piece(const MeshQuality& in, const Mesh& out) {
     if (out.triangles.rows() == 0) return false;
     RemeshReport run;
@@ -300,7 +291,7 @@ bool keeps_piece(const MeshQuality& in, const Mesh& out) {
     run.output = measure_quality(out);
     const MeshQuality& q = run.output;
     return q.boundary_edges == 0 && q.nonmanifold_edges == 0 &&
-           q.euler_characteristic == expected_euler_characteristic(run) && q.kappa_min >= std::min(in.kappa_min, 0.3);
+           q.euler_characteristic == expected_euler_characteristic(run) && q.kappa_min >= std::min(in.kappa_min, kKappaFloor);
 }
 
 // Largest share of the input's area a closed piece may have to come out as its input's triangles
@@ -437,20 +428,15 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     const AabbTree input_tree = pieces.size() == 1 ? std::move(*pieces[0].tree) : AabbTree(input);
     pieces.clear();
 
-    clock.begin("repair");
+    clock.begin("untangle");
     // Triangles passing through each other, untangled by flips (untangle.h), across pieces too.
     // The tree and the crossings left serve the report.
-    AabbTree output_tree(out);
-    std::vector<std::pair<int32_t, int32_t>> crossings = self_intersecting_pairs(out, output_tree);
-    if (!crossings.empty()) {
-        UntangleParams untangling;
-        untangling.tolerance = repair_tolerance(spacing, to_unit);
-        UntangleStats untangled = untangle(out, input_tree, std::move(crossings), untangling, std::move(output_tree));
-        report.edges_flipped += untangled.flipped;
-        report.vertices_moved += untangled.moved;
-        crossings = std::move(untangled.crossings);
-        output_tree = std::move(*untangled.tree);
-    }
+    UntangleStats untangled =
+        untangle(out, Reference{input, input_tree}, step_settings(spacing, to_unit.scale, sites_wanted).untangle);
+    report.edges_flipped += untangled.flipped;
+    report.vertices_moved += untangled.moved;
+    const std::vector<std::pair<int32_t, int32_t>> crossings = std::move(untangled.crossings);
+    const AabbTree output_tree = std::move(*untangled.tree);
     clock.end();
 
     clock.begin("quality");

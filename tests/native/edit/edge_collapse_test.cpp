@@ -142,7 +142,7 @@ TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
     ASSERT_GT(measure_quality(m, {170.0}).sharp_edge_length, 0.0); // the fold
     const long vertices = m.points.rows(), triangles = m.triangles.rows();
 
-    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 1);
+    EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(sphere)).collapsed, 1);
     EXPECT_EQ(m.points.rows(), vertices - 1);
     EXPECT_EQ(m.triangles.rows(), triangles - 2);
     const test::Topology t = test::topology(m);
@@ -151,7 +151,7 @@ TEST(FoldedPairs, APairFoldedShutIsRemovedAndTheSphereKept) {
     EXPECT_EQ(measure_quality(m, {90.0}).sharp_edge_length, 0.0);
     EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
     EXPECT_GE(test::min_kappa(m), 0.3);
-    EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere)), 0); // nothing left to remove
+    EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(sphere)).collapsed, 0); // nothing left to remove
 }
 
 // The same pair, its apexes 0.001 apart at an edge of 0.3, is left alone when the apexes must be
@@ -161,7 +161,7 @@ TEST(FoldedPairs, ThePairMustTurnFarAndItsApexesBeClose) {
     const Mesh folded = with_pair_folded_shut(sphere, 100, 0.0005);
     for (const FoldedPairParams& p : {FoldedPairParams{150.0, 0.001, 0.3}, FoldedPairParams{179.0, 0.25, 0.3}}) {
         Mesh m = folded;
-        EXPECT_EQ(collapse_folded_pairs(m, sphere, AabbTree(sphere), p), 0);
+        EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(sphere), p).collapsed, 0);
         EXPECT_EQ(m.triangles, folded.triangles);
     }
 }
@@ -192,7 +192,7 @@ TEST(FoldedPairs, APairWhoseTrianglesFaceAsTheInputIsKept) {
     Mesh input = sphere;
     for (const auto& t : pair.triangles) input = test::joined(input, test::make_mesh({t[0], t[1], t[2]}, {{0, 1, 2}}));
     Mesh m = folded;
-    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
+    EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(input)).collapsed, 0);
     EXPECT_EQ(m.triangles, folded.triangles);
     EXPECT_EQ(m.points, folded.points);
 }
@@ -211,11 +211,11 @@ TEST(FoldedPairs, APairNearAKnifeEdgeOfTheInputIsKept) {
                                        {{0, 1, 2}, {1, 0, 3}});
     const Mesh input = test::joined(sphere, knife);
     Mesh m = folded;
-    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input)), 0);
+    EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(input)).collapsed, 0);
     EXPECT_EQ(m.triangles, folded.triangles);
     FoldedPairParams sharper;
     sharper.knife_turn_deg = 160.0;
-    EXPECT_EQ(collapse_folded_pairs(m, input, AabbTree(input), sharper), 1);
+    EXPECT_EQ(collapse_folded_pairs(m, test::OwnedReference(input), sharper).collapsed, 1);
 }
 
 TEST(FoldedPairs, RefusesParametersOutOfRange) {
@@ -225,5 +225,5 @@ TEST(FoldedPairs, RefusesParametersOutOfRange) {
                                       FoldedPairParams{150.0, 0.0, 0.3}, FoldedPairParams{150.0, 1.0, 0.3},
                                       FoldedPairParams{150.0, 0.25, -0.1}, FoldedPairParams{150.0, 0.25, 1.5},
                                       FoldedPairParams{150.0, 0.25, 0.3, 0.0}, FoldedPairParams{150.0, 0.25, 0.3, 180.0}})
-        EXPECT_THROW(collapse_folded_pairs(m, m, tree, p), InvalidInput);
+        EXPECT_THROW(collapse_folded_pairs(m, {m, tree}, p), InvalidInput);
 }

@@ -80,7 +80,7 @@ TEST(HausdorffRefinement, ChamferedCreaseGetsItsCreaseBack) {
     ASSERT_NEAR(gap_before, 0.2 / std::sqrt(2.0), 1e-9);
     const HausdorffRefinementParams p = params_for(kSpacing);
 
-    const HausdorffRefinementStats stats = refine_towards_input(m, input, p);
+    const HausdorffRefinementStats stats = refine_towards_input(m, test::OwnedReference(input), p);
 
     EXPECT_GE(stats.inserted, kColumns);
     EXPECT_GT(stats.flipped, 0); // the chamfer's diagonals turn to run along the crease
@@ -108,7 +108,7 @@ TEST(HausdorffRefinement, FloorOnKappaStopsInsertionsThatMakeSlivers) {
     Mesh m = chamfered();
     HausdorffRefinementParams p = params_for(kSpacing);
     p.kappa_floor = 0.99; // no split of these triangles reaches it
-    const HausdorffRefinementStats stats = refine_towards_input(m, input, p);
+    const HausdorffRefinementStats stats = refine_towards_input(m, test::OwnedReference(input), p);
     EXPECT_EQ(stats.inserted, 0);
     EXPECT_EQ(m.triangles, chamfered().triangles);
     EXPECT_NEAR(crease_gap(m), 0.2 / std::sqrt(2.0), 1e-9);
@@ -119,7 +119,7 @@ TEST(HausdorffRefinement, MeshOnItsInputIsLeftAsItIs) {
     const Mesh input = test::make_cube(0.5, 1);
     Mesh m = test::make_cube(0.5, 5);
     const Mesh original = m;
-    const HausdorffRefinementStats stats = refine_towards_input(m, input, params_for(0.2));
+    const HausdorffRefinementStats stats = refine_towards_input(m, test::OwnedReference(input), params_for(0.2));
     EXPECT_EQ(stats.inserted, 0);
     EXPECT_EQ(stats.flipped, 0);
     EXPECT_EQ(m.points, original.points);
@@ -131,15 +131,15 @@ TEST(HausdorffRefinement, BadArgumentsAreRejected) {
     Mesh m = chamfered();
     HausdorffRefinementParams p = params_for(kSpacing);
     p.tolerance = 0.0;
-    EXPECT_THROW(refine_towards_input(m, input, p), InvalidInput);
+    EXPECT_THROW(refine_towards_input(m, test::OwnedReference(input), p), InvalidInput);
     p = params_for(kSpacing);
     p.sample_spacing = std::nan("");
-    EXPECT_THROW(refine_towards_input(m, input, p), InvalidInput);
+    EXPECT_THROW(refine_towards_input(m, test::OwnedReference(input), p), InvalidInput);
     Mesh broken = chamfered();
     broken.triangles(0, 0) = 1000;
-    EXPECT_THROW(refine_towards_input(broken, input, params_for(kSpacing)), InvalidInput);
+    EXPECT_THROW(refine_towards_input(broken, test::OwnedReference(input), params_for(kSpacing)), InvalidInput);
     Mesh empty;
-    EXPECT_EQ(refine_towards_input(empty, input, params_for(kSpacing)).inserted, 0);
+    EXPECT_EQ(refine_towards_input(empty, test::OwnedReference(input), params_for(kSpacing)).inserted, 0);
 }
 
 TEST(HausdorffRefinement, CapAndLargestDistanceLimitWhatIsInserted) {
@@ -147,7 +147,7 @@ TEST(HausdorffRefinement, CapAndLargestDistanceLimitWhatIsInserted) {
     HausdorffRefinementParams p = params_for(kSpacing);
     p.max_inserted = 3;
     Mesh capped = chamfered();
-    EXPECT_EQ(refine_towards_input(capped, input, p).inserted, 3);
+    EXPECT_EQ(refine_towards_input(capped, test::OwnedReference(input), p).inserted, 3);
     EXPECT_EQ(capped.points.rows(), chamfered().points.rows() + 3);
     // The chamfer is 0.14 deep: a largest distance of 0.1 takes its crease for a lost part;
     // in one round only points of the input's faces nearer than that to the chamfer come in
@@ -156,11 +156,11 @@ TEST(HausdorffRefinement, CapAndLargestDistanceLimitWhatIsInserted) {
     p.max_distance = 0.1;
     p.rounds = 1;
     Mesh far = chamfered();
-    refine_towards_input(far, input, p);
+    refine_towards_input(far, test::OwnedReference(input), p);
     const AabbTree before(chamfered());
     for (Eigen::Index v = chamfered().points.rows(); v < far.points.rows(); ++v)
         EXPECT_LE(before.closest(far.points.row(v).transpose()).squared_distance, 0.1 * 0.1) << v;
     EXPECT_GT(far.points.rows(), chamfered().points.rows()); // some did come in
     p.max_distance = 0.0;
-    EXPECT_THROW(refine_towards_input(far, input, p), InvalidInput);
+    EXPECT_THROW(refine_towards_input(far, test::OwnedReference(input), p), InvalidInput);
 }

@@ -29,7 +29,7 @@ QualityPolishParams with_tolerance(double tolerance) {
     p.tolerance = tolerance;
     return p;
 }
-long flips(Mesh& m, const AabbTree& input, double tolerance) {
+long flips(Mesh& m, const Reference& input, double tolerance) {
     return polish_quality(m, input, with_tolerance(tolerance)).flipped;
 }
 bool has_edge(const Mesh& m, int32_t u, int32_t v) {
@@ -42,7 +42,7 @@ bool has_edge(const Mesh& m, int32_t u, int32_t v) {
 
 TEST(QualityPolish, AFlatQuadGetsItsShorterDiagonal) {
     Mesh m = kite({0, -0.4, 0});
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     const double before = test::min_kappa(m);
     EXPECT_EQ(flips(m, input, 0.01), 1);
     EXPECT_TRUE(has_edge(m, 2, 3));
@@ -55,7 +55,7 @@ TEST(QualityPolish, AFlatQuadGetsItsShorterDiagonal) {
 
 TEST(QualityPolish, ASharpEdgeIsNeverFlipped) {
     Mesh m = kite({0, 0, -0.4}); // the second triangle turned by 90 degrees about a-b
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     EXPECT_EQ(flips(m, input, 1e3), 0);
     EXPECT_TRUE(has_edge(m, 0, 1));
 }
@@ -63,7 +63,7 @@ TEST(QualityPolish, ASharpEdgeIsNeverFlipped) {
 TEST(QualityPolish, AFlipThatLeavesTheInputIsNotMade) {
     // Bent by about 10 degrees about a-b: the diagonal c-d passes 0.035 from the input (the quad).
     Mesh bent = kite({0, -0.4, 0.07});
-    const AabbTree input(bent);
+    const test::OwnedReference input(bent);
     Mesh tight = bent;
     EXPECT_EQ(flips(tight, input, 0.05), 0); // 0.035 > half the tolerance, and a-b lies on it
     EXPECT_EQ(flips(bent, input, 0.1), 1);   // 0.035 <= 0.05
@@ -91,7 +91,7 @@ Mesh wall_end() {
 TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
     // t, v, w, u; the triangles (t, v, w) and (v, t, u).
     Mesh m = test::make_mesh({{0, 0.8, 0.4}, {1, 0, 0.4}, {0, 0, 0.8}, {0, 0, 0}}, {{0, 1, 2}, {1, 0, 3}});
-    const AabbTree input(wall_end());
+    const test::OwnedReference input(wall_end());
     ASSERT_GT(test::largest_dihedral_deg(m), 110.0);
     Mesh near_enough = m; // the fold is within a tolerance of 0.5: left as it is
     EXPECT_EQ(polish_quality(near_enough, input, with_tolerance(0.5)).unfolded, 0);
@@ -100,7 +100,7 @@ TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
     EXPECT_TRUE(has_edge(m, 2, 3));
     EXPECT_FALSE(has_edge(m, 0, 1));
     for (Eigen::Index f = 0; f < 2; ++f) // on the input now (its corners were already)
-        EXPECT_LE(input.closest((corner(m, f, 0) + corner(m, f, 1) + corner(m, f, 2)) / 3.0).squared_distance, 1e-24);
+        EXPECT_LE(input.tree.closest((corner(m, f, 0) + corner(m, f, 1) + corner(m, f, 2)) / 3.0).squared_distance, 1e-24);
     EXPECT_LT(test::largest_dihedral_deg(m), 90.0 + 1e-9);
     EXPECT_GE(test::min_kappa(m), 0.3);
 }
@@ -110,7 +110,7 @@ TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
 TEST(QualityPolish, ASharpCreaseOfTheInputIsNoFold) {
     const double s = std::sqrt(0.5);
     Mesh m = test::make_mesh({{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, -s, s}}, {{1, 0, 2}, {0, 1, 3}});
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     const QualityPolishStats stats = polish_quality(m, input, with_tolerance(1e3));
     EXPECT_EQ(stats.unfolded, 0);
     EXPECT_EQ(stats.flipped, 0);
@@ -136,7 +136,7 @@ Mesh crease_pair(double off) {
 TEST(QualityPolish, ACapOnACreaseIsFlippedAndTheCreaseRunsThroughItsApex) {
     // c 0.05 off the crease: an angle of 174 degrees at c, kappa 0.09.
     Mesh m = crease_pair(0.05);
-    const AabbTree input(right_crease());
+    const test::OwnedReference input(right_crease());
     ASSERT_LT(test::min_kappa(m), 0.1);
     ASSERT_NEAR(measure_quality(m).sharp_edge_length, 2.0, 1e-12); // a-b
     Mesh strict = m; // c lies 0.05 off face B: beyond a tolerance of 0.01, the flip is not made
@@ -168,14 +168,14 @@ TEST(QualityPolish, ACapOnTheRimOfAThinPlateIsKept) {
     const auto quad = editable.quad_of(editable.edge_uses().at(edge_key(0, 1)));
     ASSERT_TRUE(quad.has_value());
     ASSERT_TRUE(cap_flip_fits_input(editable, *quad, tree, 0.1)); // on its own, the flip would do
-    polish_quality(m, tree, with_tolerance(0.1));
+    polish_quality(m, {input, tree}, with_tolerance(0.1));
     EXPECT_TRUE(has_edge(m, 0, 1));
 }
 
 TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {
     // c 0.3 off the crease: 147 degrees at c.
     Mesh m = crease_pair(0.3);
-    const AabbTree input(right_crease());
+    const test::OwnedReference input(right_crease());
     polish_quality(m, input, with_tolerance(0.5));
     EXPECT_TRUE(has_edge(m, 0, 1));
 }
@@ -183,7 +183,7 @@ TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {
 TEST(QualityPolish, AVertexPushedOutOfPlaceOnAFlatPartIsMovedBack) {
     Mesh m = test::make_square(4.0, 4); // unit cells, vertex 12 at (2, 2)
     m.points.row(12) << 2.7, 2.6, 0.0;
-    const AabbTree input(test::make_square(4.0, 4));
+    const test::OwnedReference input(test::make_square(4.0, 4));
     QualityPolishParams no_flips = with_tolerance(0.1);
     no_flips.flip_passes = 0;
     const double before = test::min_kappa(m);
@@ -209,7 +209,7 @@ TEST(QualityPolish, AVertexOnACreaseIsNotMoved) {
              std::abs(m.points(v, 2)) < 1e-12))
         ++v;
     m.points(v, 2) = 0.2;
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     QualityPolishParams no_flips = with_tolerance(0.05);
     no_flips.flip_passes = 0;
     const Eigen::RowVector3d at = m.points.row(v);
@@ -230,7 +230,7 @@ TEST(QualityPolish, AClosedSurfaceKeepsItsTopologyAndGetsNoWorse) {
         m.points.row(v) += Eigen::RowVector3d(jitter(rng), jitter(rng), jitter(rng));
         m.points.row(v).normalize();
     }
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     const double before = test::min_kappa(m);
     const QualityPolishStats stats = polish_quality(m, input, with_tolerance(0.05));
     EXPECT_GT(stats.flipped, 0);
@@ -244,7 +244,7 @@ TEST(QualityPolish, AClosedSurfaceKeepsItsTopologyAndGetsNoWorse) {
 
 TEST(QualityPolish, BadArgumentsAreRejected) {
     Mesh m = kite({0, -0.4, 0});
-    const AabbTree input(m);
+    const test::OwnedReference input(m);
     EXPECT_THROW(polish_quality(m, input, with_tolerance(0.0)), InvalidInput);
     EXPECT_THROW(polish_quality(m, input, with_tolerance(std::nan(""))), InvalidInput);
     QualityPolishParams p = with_tolerance(0.1);

@@ -45,7 +45,7 @@ TEST(Untangle, AFlipTakesAQuadOutOfATriangleItPassesThrough) {
     EXPECT_EQ(crossings(tent()).size(), 0u);
     // The input is the tent: the flip puts the quad on it.
     const Mesh input = tent();
-    const UntangleStats stats = untangle(m, AabbTree(input), before, with_tolerance(0.01));
+    const UntangleStats stats = untangle(m, test::OwnedReference(input), with_tolerance(0.01));
     EXPECT_EQ(stats.flipped, 1);
     EXPECT_TRUE(stats.crossings.empty());
     EXPECT_TRUE(crossings(m).empty());
@@ -59,11 +59,11 @@ TEST(Untangle, NoFlipTakesTheSurfaceOffTheInput) {
     // the crossing stays; with a tolerance past that distance the flip is made.
     Mesh m = valley();
     const Mesh input = valley();
-    const UntangleStats kept = untangle(m, AabbTree(input), crossings(m), with_tolerance(0.05));
+    const UntangleStats kept = untangle(m, test::OwnedReference(input), with_tolerance(0.05));
     EXPECT_EQ(kept.flipped, 0);
     EXPECT_EQ(kept.crossings.size(), 1u);
     EXPECT_EQ(m.triangles, valley().triangles);
-    const UntangleStats flipped = untangle(m, AabbTree(input), crossings(m), with_tolerance(1.0));
+    const UntangleStats flipped = untangle(m, test::OwnedReference(input), with_tolerance(1.0));
     EXPECT_EQ(flipped.flipped, 1);
     EXPECT_TRUE(flipped.crossings.empty());
 }
@@ -77,7 +77,7 @@ TEST(Untangle, AFlipThatLeavesAsManyCrossingsIsNotMade) {
     ASSERT_EQ(crossings(m).size(), 1u);
     ASSERT_EQ(crossings(make_mesh(points, {{0, 3, 2}, {3, 1, 2}, kT})).size(), 1u);
     const Mesh input = m;
-    const UntangleStats stats = untangle(m, AabbTree(input), crossings(m), with_tolerance(1.0));
+    const UntangleStats stats = untangle(m, test::OwnedReference(input), with_tolerance(1.0));
     EXPECT_EQ(stats.flipped, 0);
     EXPECT_EQ(m.triangles, input.triangles);
 }
@@ -85,13 +85,13 @@ TEST(Untangle, AFlipThatLeavesAsManyCrossingsIsNotMade) {
 TEST(Untangle, LeavesAMeshWithoutCrossingsOrWithoutAFlipThatHelpsAsItIs) {
     Mesh sphere = test::make_icosphere(2);
     const Mesh original = sphere;
-    EXPECT_EQ(untangle(sphere, AabbTree(original), {}, with_tolerance(0.01)).flipped, 0);
+    EXPECT_EQ(untangle(sphere, test::OwnedReference(original), with_tolerance(0.01)).flipped, 0);
     EXPECT_EQ(sphere.triangles, original.triangles);
     // Two loose triangles through each other: no edge to flip.
     Mesh pair = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, -0.5}, {0.3, 0.2, 0.5}, {0.2, 0.3, 0.5}},
                           {{0, 1, 2}, {3, 4, 5}});
     ASSERT_EQ(crossings(pair).size(), 1u);
-    const UntangleStats stats = untangle(pair, AabbTree(pair), crossings(pair), with_tolerance(0.01));
+    const UntangleStats stats = untangle(pair, test::OwnedReference(pair), with_tolerance(0.01));
     EXPECT_EQ(stats.flipped, 0);
     EXPECT_EQ(stats.moved, 0); // their corners end edges of one triangle: on a border, never moved
     EXPECT_EQ(stats.crossings.size(), 1u);
@@ -107,7 +107,7 @@ TEST(Untangle, AVertexPushedThroughTheOtherSideIsMovedBackOntoTheInput) {
     const Eigen::Vector3d p = m.points.row(v);
     m.points.row(v) = -1.3 * p;
     ASSERT_FALSE(crossings(m).empty());
-    const UntangleStats stats = untangle(m, AabbTree(input), crossings(m), with_tolerance(0.01));
+    const UntangleStats stats = untangle(m, test::OwnedReference(input), with_tolerance(0.01));
     EXPECT_EQ(stats.moved, 1);
     EXPECT_TRUE(stats.crossings.empty());
     EXPECT_TRUE(crossings(m).empty());
@@ -126,7 +126,7 @@ TEST(Untangle, NoMoveMakesATriangleFaceAgainstTheInput) {
     Mesh m = test::make_icosphere(3);
     m.points.row(0) *= -1.3;
     const Mesh pushed = m;
-    const UntangleStats stats = untangle(m, AabbTree(input), crossings(m), with_tolerance(0.01));
+    const UntangleStats stats = untangle(m, test::OwnedReference(input), with_tolerance(0.01));
     EXPECT_EQ(stats.moved, 0);
     EXPECT_FALSE(stats.crossings.empty());
     EXPECT_EQ(m.points, pushed.points);
@@ -136,5 +136,5 @@ TEST(Untangle, RefusesABadTolerance) {
     Mesh m = valley();
     const AabbTree input(tent());
     for (double tolerance : {0.0, -1.0, std::numeric_limits<double>::infinity()})
-        EXPECT_THROW(untangle(m, input, crossings(m), with_tolerance(tolerance)), InvalidInput) << tolerance;
+        EXPECT_THROW(untangle(m, {tent(), input}, with_tolerance(tolerance)), InvalidInput) << tolerance;
 }

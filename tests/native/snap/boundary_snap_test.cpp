@@ -49,7 +49,7 @@ TEST(BoundarySnap, AShrunkGridGoesBackOntoTheSquare) {
     output.points = ((output.points.rowwise() - centre) * 0.96).rowwise() + centre; // 0.02 inside
     const Mesh before = output;
 
-    const BoundarySnapStats s = snap_boundary(output, input);
+    const BoundarySnapStats s = snap_boundary(output, OwnedReference(input));
     EXPECT_EQ(s.input_corners, 4);
     EXPECT_EQ(s.corners_matched, 4);
     EXPECT_EQ(s.vertices_snapped, 20);
@@ -68,15 +68,15 @@ TEST(BoundarySnap, ClosedOrFarAwayBoundariesAreLeftAlone) {
     const Mesh sphere = test::make_icosphere(2), square = test::make_square(1.0, 4);
     Mesh output = test::make_square(1.0, 5);
     const Mesh before = output;
-    EXPECT_EQ(snap_boundary(output, sphere).moved(), 0); // closed input
+    EXPECT_EQ(snap_boundary(output, OwnedReference(sphere)).moved(), 0); // closed input
     EXPECT_EQ(output.points, before.points);
     Mesh closed = sphere;
-    EXPECT_EQ(snap_boundary(closed, square).moved(), 0); // closed output
+    EXPECT_EQ(snap_boundary(closed, OwnedReference(square)).moved(), 0); // closed output
     EXPECT_EQ(closed.points, sphere.points);
     // An output boundary more than an edge length (0.2) from the input's: not the input's boundary.
     output.points.col(2).array() += 0.25;
     const Mesh lifted = output;
-    EXPECT_EQ(snap_boundary(output, square).moved(), 0);
+    EXPECT_EQ(snap_boundary(output, OwnedReference(square)).moved(), 0);
     EXPECT_EQ(output.points, lifted.points);
 }
 
@@ -92,15 +92,15 @@ TEST(BoundarySnap, AMoveThatWouldCollapseATriangleIsRefused) {
         return triangle_area(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2));
     };
     Mesh refused = output;
-    EXPECT_GE(snap_boundary(refused, input).moves_refused, 1);
+    EXPECT_GE(snap_boundary(refused, OwnedReference(input)).moves_refused, 1);
     EXPECT_EQ(refused.points.row(0), output.points.row(0));
     for (Eigen::Index f = 0; f < output.triangles.rows(); ++f) EXPECT_GE(area(refused, f), 0.25 * area(output, f));
     EXPECT_EQ(test::facing_inward(refused, Eigen::Vector3d(0, 0, -1)), 0); // none flipped
 
-    BoundarySnapOptions lenient;
+    BoundarySnapParams lenient;
     lenient.min_area_ratio = 0.1;
     Mesh moved = output;
-    snap_boundary(moved, input, lenient);
+    snap_boundary(moved, OwnedReference(input), lenient);
     EXPECT_EQ(moved.points.row(0), Eigen::RowVector3d(0.8, 0, 0));
     EXPECT_EQ(test::facing_inward(moved, Eigen::Vector3d(0, 0, -1)), 0);
 }
@@ -111,7 +111,7 @@ TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
     const Mesh input = acute_triangle(20);
     Mesh output = wedge_strip(20, 0.1);
     const Mesh before = output;
-    const BoundarySnapStats s = snap_boundary(output, input);
+    const BoundarySnapStats s = snap_boundary(output, OwnedReference(input));
     EXPECT_EQ(s.input_corners, 3);
     EXPECT_EQ(s.corners_matched, 0);
     EXPECT_EQ(s.corners_inserted, 1);
@@ -130,11 +130,11 @@ TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
     // At 10 degrees the only triangle has kappa 0.318: made above half the default floor, not
     // above half of 0.7.
     Mesh sharp = wedge_strip(10, 0.1);
-    EXPECT_EQ(snap_boundary(sharp, acute_triangle(10)).corners_inserted, 1);
-    BoundarySnapOptions strict;
+    EXPECT_EQ(snap_boundary(sharp, OwnedReference(acute_triangle(10))).corners_inserted, 1);
+    BoundarySnapParams strict;
     strict.min_kappa = 0.7;
     Mesh kept = wedge_strip(10, 0.1);
-    EXPECT_EQ(snap_boundary(kept, acute_triangle(10), strict).corners_inserted, 0);
+    EXPECT_EQ(snap_boundary(kept, OwnedReference(acute_triangle(10)), strict).corners_inserted, 0);
     EXPECT_EQ(kept.points, wedge_strip(10, 0.1).points);
     EXPECT_EQ(kept.triangles, wedge_strip(10, 0.1).triangles);
 
@@ -148,7 +148,7 @@ TEST(BoundarySnap, AnAcuteCornerOutOfReachGetsAVertexAndATriangle) {
     parts.triangles.conservativeResize(3, Eigen::NoChange);
     parts.triangles.row(2) << 4, 5, 6;
     Mesh apart = strip;
-    EXPECT_EQ(snap_boundary(apart, parts).corners_inserted, 0);
+    EXPECT_EQ(snap_boundary(apart, OwnedReference(parts)).corners_inserted, 0);
     EXPECT_EQ(apart.points, strip.points);
     EXPECT_EQ(apart.triangles, strip.triangles);
 }
@@ -163,7 +163,7 @@ TEST(BoundarySnap, AFlapBeyondTheBoundaryIsRemoved) {
     output.triangles.conservativeResize(output.triangles.rows() + 1, Eigen::NoChange);
     output.triangles.row(output.triangles.rows() - 1) << 2, 1, 25;
     ASSERT_TRUE(test::topology(output).oriented_manifold());
-    const BoundarySnapStats s = snap_boundary(output, square);
+    const BoundarySnapStats s = snap_boundary(output, OwnedReference(square));
     EXPECT_EQ(s.flaps_removed, 1);
     EXPECT_EQ(output.triangles.rows(), square.triangles.rows());
     ASSERT_EQ(output.points.rows(), square.points.rows());
@@ -184,7 +184,7 @@ TEST(BoundarySnap, AFlapBeyondTheBoundaryIsRemoved) {
     two.triangles.conservativeResize(two.triangles.rows() + 2, Eigen::NoChange);
     two.triangles.bottomRows(2) << 2, 1, 25, 3, 2, 25;
     ASSERT_TRUE(test::topology(two).oriented_manifold());
-    EXPECT_EQ(snap_boundary(two, square).flaps_removed, 0);
+    EXPECT_EQ(snap_boundary(two, OwnedReference(square)).flaps_removed, 0);
     EXPECT_EQ(two.triangles.rows(), square.triangles.rows() + 2);
     EXPECT_EQ(two.points.rows(), 26);
 }
@@ -192,13 +192,13 @@ TEST(BoundarySnap, AFlapBeyondTheBoundaryIsRemoved) {
 TEST(BoundarySnap, BadOptionsAreRejected) {
     const Mesh square = test::make_square(1.0, 2);
     Mesh output = square;
-    BoundarySnapOptions o;
+    BoundarySnapParams o;
     o.corner_angle_deg = 180;
-    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+    EXPECT_THROW(snap_boundary(output, OwnedReference(square), o), InvalidInput);
     o = {};
     o.reach = 0;
-    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+    EXPECT_THROW(snap_boundary(output, OwnedReference(square), o), InvalidInput);
     o = {};
     o.min_area_ratio = 1;
-    EXPECT_THROW(snap_boundary(output, square, o), InvalidInput);
+    EXPECT_THROW(snap_boundary(output, OwnedReference(square), o), InvalidInput);
 }

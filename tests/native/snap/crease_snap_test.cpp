@@ -68,7 +68,7 @@ TEST(CreaseSnap, PutsTheRowOfAKnifeEdgeBackOnIt) {
     const int row = 11; // the edge's vertices, 0 .. 10
     const test::Topology before = test::topology(mesh);
     for (int j = 0; j < row; ++j) ASSERT_NEAR(mesh.points.row(j).head<2>().norm(), offset, 1e-12);
-    const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params_for(h));
+    const CreaseSnapStats stats = snap_to_acute_creases(mesh, test::OwnedReference(input), params_for(h));
     EXPECT_EQ(stats.creases, 1);
     EXPECT_EQ(stats.moved, row);
     for (int j = 0; j < row; ++j) {
@@ -87,7 +87,7 @@ TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
         const Mesh input = wedge(90.0, 1.0, 1.0); // the normals turn by 90 degrees: not acute
         Mesh mesh = wedge(90.0, 1.0, 1.0, h, 0.3 * h);
         const Mesh was = mesh;
-        const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params_for(h));
+        const CreaseSnapStats stats = snap_to_acute_creases(mesh, test::OwnedReference(input), params_for(h));
         EXPECT_EQ(stats.creases, 0);
         EXPECT_EQ(stats.moved, 0);
         EXPECT_TRUE(mesh.points == was.points);
@@ -99,7 +99,7 @@ TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
         CreaseSnapParams params = params_for(h);
         params.tolerance = 0.5 * h; // the row cuts the edge less deep than that
         params.corner_radius = 0.1 * h;
-        const CreaseSnapStats stats = snap_to_acute_creases(mesh, input, AabbTree(input), params);
+        const CreaseSnapStats stats = snap_to_acute_creases(mesh, test::OwnedReference(input), params);
         EXPECT_EQ(stats.creases, 1);
         EXPECT_EQ(stats.moved, 0);
     }
@@ -111,11 +111,11 @@ TEST(CreaseSnap, RejectsBadParameters) {
     const AabbTree tree(input);
     CreaseSnapParams p = params_for(0.1);
     p.radius = 0.0;
-    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
     p = params_for(0.1);
     p.tolerance = std::nan("");
-    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
     p = params_for(0.1);
     p.min_turn_deg = 200.0;
-    EXPECT_THROW(snap_to_acute_creases(mesh, input, tree, p), InvalidInput);
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
 }

@@ -258,14 +258,16 @@ long collapse_short_edges(Mesh& mesh, double ratio) {
     return collapser.finish();
 }
 
-long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree, const FoldedPairParams& params) {
+FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& reference, const FoldedPairParams& params) {
+    const Mesh& input = reference.mesh;
+    const AabbTree& input_tree = reference.tree;
     if (!(params.min_turn_deg > 90.0 && params.min_turn_deg < 180.0) || !(params.gap_ratio > 0.0 && params.gap_ratio < 1.0) ||
         !(params.kappa_floor >= 0.0 && params.kappa_floor <= 1.0) ||
         !(params.knife_turn_deg > 0.0 && params.knife_turn_deg < 180.0))
         throw InvalidInput("collapse_folded_pairs: min_turn_deg must lie in (90, 180), gap_ratio in (0, 1), "
                            "kappa_floor in [0, 1] and knife_turn_deg in (0, 180)");
     check_indices(mesh, "folded pairs' mesh");
-    if (mesh.triangles.rows() == 0) return 0;
+    if (mesh.triangles.rows() == 0) return {};
     const double cos_turn = std::cos(params.min_turn_deg * M_PI / 180.0);
     auto normal_of = [&](int32_t f) {
         return triangle_normal(position(mesh, mesh.triangles(f, 0)), position(mesh, mesh.triangles(f, 1)),
@@ -302,7 +304,7 @@ long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_
         if (folded_shut(a, b, {f1, f2, mesh.triangles(f1, (j1 + 2) % 3), mesh.triangles(f2, (j2 + 2) % 3)}))
             candidates.emplace_back(a, b);
     }
-    if (candidates.empty()) return 0;
+    if (candidates.empty()) return {};
 
     // A pair within its edge's length of a knife edge of the input, whose two faces there are
     // easily each other's nearest triangles, stands for it: kept. The creases sampled at the
@@ -325,7 +327,7 @@ long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_
         const auto was = collapser.flip(a, b, *q);
         if (!collapser.collapse(c, d, must_beat)) collapser.unflip(a, b, *q, was);
     }
-    return collapser.finish();
+    return {collapser.finish()};
 }
 
 } // namespace liftremesh

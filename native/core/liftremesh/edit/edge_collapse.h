@@ -12,7 +12,9 @@
 //   edge apart, one of them on the knife edge) such a pair stands for it and is kept.
 #pragma once
 
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/reference.h"
 
 namespace liftremesh {
 
@@ -26,7 +28,9 @@ namespace liftremesh {
 //! number of collapses; unreferenced vertices are removed.
 long collapse_short_edges(Mesh& mesh, double ratio = 0.35);
 
-class AabbTree;
+struct FoldedPairStats {
+    long collapsed = 0; //!< pairs removed, each two triangles and a vertex
+};
 
 struct FoldedPairParams {
     //! The two triangles of an edge turn by more than this (degrees), in (90, 180): 150 is an
@@ -39,7 +43,7 @@ struct FoldedPairParams {
     double gap_ratio = 0.25;
     //! No triangle the collapse leaves has a kappa (Eq. 26) under this or under the worst of the
     //! triangles around the four vertices before it, whichever is lower. In [0, 1].
-    double kappa_floor = 0.3;
+    double kappa_floor = kKappaFloor;
     //! A pair within its edge's length of an acute crease of the input (its triangles turning by
     //! more than this, degrees, in (0, 180): acute_creases.h) is kept. The crease snap's 120.
     double knife_turn_deg = 120.0;
@@ -51,11 +55,10 @@ struct FoldedPairParams {
 //! (a knife edge of the input, followed, has both on it) and which lies farther than its length
 //! from the input's acute creases (params.knife_turn_deg) is flipped to join the apexes, and that
 //! edge collapsed, under the rules of collapse_short_edges but for the kappa
-//! (params.kappa_floor); where the collapse is not allowed the flip is undone. `input_tree` is
-//! AabbTree(input). Each removal takes out two triangles and a vertex and keeps the Euler
-//! characteristic. Returns the removals; unreferenced vertices are removed. Throws InvalidInput
-//! if a parameter is out of range or an index is.
-long collapse_folded_pairs(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
-                           const FoldedPairParams& params = {});
+//! (params.kappa_floor); where the collapse is not allowed the flip is undone. Each removal
+//! takes out two triangles and a vertex and keeps the Euler characteristic; unreferenced
+//! vertices are removed.
+//! \throw InvalidInput if a parameter is out of range or an index is.
+FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& input, const FoldedPairParams& params = {});
 
 } // namespace liftremesh

@@ -1,5 +1,7 @@
 #include "liftremesh/edit/flip_rules.h"
 
+#include "liftremesh/edit/quality_floors.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,7 +67,7 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
         return false; // near the input: a crease of it, followed, or a fold too small to matter
     const auto [n1, n2] = EditableMesh::flipped(quad);
     const double worse_before = std::min(mesh.kappa(t1), mesh.kappa(t2));
-    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(worse_before, 0.3))) return false;
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(worse_before, kKappaFloor))) return false;
     return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
 }
 

@@ -204,8 +204,9 @@ private:
 
 } // namespace
 
-HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params,
-                                              const AabbTree* input_tree) {
+HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& reference,
+                                              const HausdorffRefinementParams& params) {
+    const Mesh& input = reference.mesh;
     check_indices(mesh, "refined mesh");
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -216,9 +217,7 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, con
     HausdorffRefinementStats stats;
     if (mesh.triangles.rows() == 0 || input.triangles.rows() == 0) return stats;
     const std::vector<Eigen::Vector3d> samples = edge_samples(input, params.sample_spacing);
-    std::optional<AabbTree> own;
-    if (!input_tree) input_tree = &own.emplace(input);
-    Refinement refinement(mesh, *input_tree, params);
+    Refinement refinement(mesh, reference.tree, params);
     for (int round = 0; round < params.rounds && stats.inserted < params.max_inserted; ++round) {
         const long inserted = refinement.insert(samples, params.max_inserted - stats.inserted);
         if (inserted == 0) break;

@@ -20,32 +20,30 @@
 // (the bunny at 50000 vertices takes 40).
 #pragma once
 
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/reference.h"
 
 #include <limits>
 
 namespace liftremesh {
 
 struct HausdorffRefinementParams {
-    //! Input points farther than this from the output are inserted. The pipeline uses 0.15 h
-    //! (h the target edge length): a chamfer cuts about 0.3 h deep, the chord of a fillet of
-    //! radius r at edge length h is h^2 / (8 r), below 0.15 h when r > 0.83 h.
+    //! Input points farther than this from the output are inserted (the pipeline's:
+    //! kInputTolerance, steps.h). Positive and finite.
     double tolerance = 0.0;
-    //! Input points farther than this are not a chamfer's (which is at most about h / 2 deep)
-    //! but a part the output lost (too coarse for thin parts, a broken input) and are left
-    //! alone: inserting them only adds poor triangles. The pipeline: h.
+    //! Input points farther than this are not a chamfer's but a part the output lost (too
+    //! coarse for thin parts, a broken input) and are left alone: inserting them only adds poor
+    //! triangles. Positive.
     double max_distance = std::numeric_limits<double>::infinity();
-    //! Most points inserted in all (the pipeline: 1% of the vertices asked for; the shared CAD
-    //! meshes take 0 to 8 of 6000, the bunny 41 of 50000).
+    //! Most points inserted in all. Not negative.
     long max_inserted = std::numeric_limits<long>::max();
-    //! Spacing of the samples along the input's edges (the pipeline: h / 2, two or more samples
-    //! along a chamfer: h / 4 finds the same chamfers, at twice the cost).
+    //! Spacing of the samples along the input's edges. Positive and finite.
     double sample_spacing = 0.0;
     //! No insertion makes a triangle with a lower kappa, nor does a flip for distance unless
-    //! the triangles it replaces were worse. 0.45 keeps the worst triangle of the shared CAD
-    //! meshes at 6000 vertices where the optimisation left it (0.43 to 0.56).
-    double kappa_floor = 0.45;
+    //! the triangles it replaces were worse: an inserted point is on the input already, so it
+    //! may not make the worst triangle worse than the optimisation leaves it.
+    double kappa_floor = kKappaFloorOnInput;
     //! Rounds of sampling, insertion and flips (each inserts at most one point per triangle).
     int rounds = 4;
 };
@@ -61,8 +59,7 @@ struct HausdorffRefinementStats {
 //! only; a flip never makes an edge the mesh has). Triangles that are not part of an
 //! oriented manifold quad are split but never flipped. Throws InvalidInput if a parameter is
 //! not positive (kappa_floor and max_inserted may be 0) or an index is out of range.
-//! `input_tree`, if given, is AabbTree(input), which is built here otherwise.
-HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Mesh& input, const HausdorffRefinementParams& params,
-                                              const AabbTree* input_tree = nullptr);
+HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input,
+                                              const HausdorffRefinementParams& params);
 
 } // namespace liftremesh

@@ -169,7 +169,8 @@ private:
 
 } // namespace
 
-QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params) {
+QualityPolishStats polish_quality(Mesh& mesh, const Reference& reference, const QualityPolishParams& params) {
+    const AabbTree& input = reference.tree;
     check_indices(mesh, "polished mesh");
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.flip_passes < 0 ||
         params.relax_passes < 0)

@@ -34,13 +34,13 @@
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/reference.h"
 
 namespace liftremesh {
 
 struct QualityPolishParams {
-    //! Distance from the input that a flip may give a new diagonal (half of it; the pipeline:
-    //! the Hausdorff refinement's tolerance, 0.15 h). Positive and finite.
+    //! Distance from the input that a flip may give a new diagonal (half of it; the pipeline's:
+    //! kInputTolerance, steps.h). Positive and finite.
     double tolerance = 0.0;
     //! Passes of flips (the first over every edge, each next one around the last one's flips).
     int flip_passes = 8;
@@ -60,6 +60,6 @@ struct QualityPolishStats {
 
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
-QualityPolishStats polish_quality(Mesh& mesh, const AabbTree& input, const QualityPolishParams& params);
+QualityPolishStats polish_quality(Mesh& mesh, const Reference& input, const QualityPolishParams& params);
 
 } // namespace liftremesh

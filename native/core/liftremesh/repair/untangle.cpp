@@ -190,15 +190,16 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
 
 } // namespace
 
-UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
-                       const UntangleParams& params, std::optional<AabbTree> mesh_tree) {
+UntangleStats untangle(Mesh& mesh, const Reference& reference, const UntangleParams& params) {
+    const AabbTree& input = reference.tree;
     check_indices(mesh, "untangled mesh");
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.passes < 0)
         throw InvalidInput("untangle: the tolerance must be positive and finite, the passes not negative");
     UntangleStats stats;
     // One tree of the mesh at a time: the one each pass finds it with, made again after each pass
     // that changed it (the pass's copies gone by then), for the next pass and the crossings left.
-    stats.tree = std::move(mesh_tree);
+    stats.tree.emplace(mesh);
+    std::vector<std::pair<int32_t, int32_t>> crossings = self_intersecting_pairs(mesh, *stats.tree);
     auto tree = [&]() -> const AabbTree& {
         if (!stats.tree) stats.tree.emplace(mesh);
         return *stats.tree;

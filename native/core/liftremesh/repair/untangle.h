@@ -17,8 +17,10 @@
 // border moves; topology and orientation are kept.
 #pragma once
 
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/reference.h"
 
 #include <cstdint>
 #include <optional>
@@ -29,30 +31,30 @@ namespace liftremesh {
 
 struct UntangleParams {
     //! Distance from the input that a new triangle may reach when the old ones were nearer
-    //! (the pipeline: the Hausdorff refinement's tolerance, 0.15 h). Positive and finite.
+    //! (the pipeline's: kInputTolerance, steps.h). Positive and finite.
     double tolerance = 0.0;
     //! Passes of flips around the triangles still crossing, each after a fresh count; then as
     //! many passes of moves.
     int passes = 4;
     //! A flip or move may not make a triangle of kappa (Eq. 26) below this, unless the worst
     //! one it changes was lower still.
-    double kappa_floor = 0.2;
+    double kappa_floor = kKappaFloorUntangle;
 };
 
 struct UntangleStats {
     long flipped = 0; //!< edge flips
     long moved = 0;   //!< vertex moves
     std::vector<std::pair<int32_t, int32_t>> crossings; //!< what is left, as self_intersecting_pairs
-    //! AabbTree(mesh) of the mesh as left: the one given, or made here.
+    //! AabbTree(mesh) of the mesh as left.
     std::optional<AabbTree> tree;
 };
 
-//! Flips edges, then moves vertices, of the triangles in `crossings` (self_intersecting_pairs(mesh,
-//! ...)) as above, pass after pass while crossings are left and a pass changes something.
-//! `mesh_tree`, if given, is AabbTree(mesh), which the first pass uses instead of making its own;
-//! the tree of the mesh as left comes back in stats.tree. Throws InvalidInput if the tolerance is
-//! not positive and finite, passes is negative, or an index is out of range.
-UntangleStats untangle(Mesh& mesh, const AabbTree& input, std::vector<std::pair<int32_t, int32_t>> crossings,
-                       const UntangleParams& params, std::optional<AabbTree> mesh_tree = std::nullopt);
+//! Finds the pairs of triangles of `mesh` that cross (self_intersecting_pairs), then flips edges
+//! and moves vertices of the crossing triangles as above, pass after pass while crossings are
+//! left and a pass changes something. The crossings left and the tree of the mesh as left come
+//! back in the stats, for the report.
+//! \throw InvalidInput if the tolerance is not positive and finite, passes is negative, or an
+//! index is out of range.
+UntangleStats untangle(Mesh& mesh, const Reference& input, const UntangleParams& params);
 
 } // namespace liftremesh

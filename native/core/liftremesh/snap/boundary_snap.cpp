@@ -57,10 +57,10 @@ std::vector<Corner> find_corners(const Mesh& mesh, const std::vector<Edge>& edge
     return out;
 }
 
-void check_options(const BoundarySnapOptions& o) {
+void check_options(const BoundarySnapParams& o) {
     auto fail = [](const char* field, double value, const char* expected) {
         std::ostringstream message;
-        message << "BoundarySnapOptions." << field << " = " << value << ": expected " << expected;
+        message << "BoundarySnapParams." << field << " = " << value << ": expected " << expected;
         throw InvalidInput(message.str());
     };
     if (!(o.corner_angle_deg > 0.0 && o.corner_angle_deg < 180.0))
@@ -76,7 +76,7 @@ void check_options(const BoundarySnapOptions& o) {
 // triangles as they were when the mover was made (the accepted moves of neighbours count).
 class VertexMover {
 public:
-    VertexMover(Mesh& mesh, const std::vector<int32_t>& movable, const BoundarySnapOptions& options)
+    VertexMover(Mesh& mesh, const std::vector<int32_t>& movable, const BoundarySnapParams& options)
         : mesh_(mesh), min_area_ratio_(options.min_area_ratio), min_kappa_(options.min_kappa),
           slot_(static_cast<size_t>(mesh.points.rows()), -1) {
         for (size_t i = 0; i < movable.size(); ++i) slot_[movable[i]] = static_cast<int32_t>(i);
@@ -315,11 +315,9 @@ long remove_flaps(Mesh& output, const OutputBoundary& boundary, const VertexMove
 // Step 3 of snap_boundary(): the corners step 1 could not match, with no output boundary vertex
 // within reach, get a vertex of their own (see snap_boundary()). Returns how many.
 long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& corners,
-                    const OutputBoundary& boundary, double min_kappa, const AabbTree* input_tree) {
+                    const OutputBoundary& boundary, double min_kappa, const AabbTree& input_tree) {
     long made = 0;
     if (corners.empty()) return made;
-    std::unique_ptr<AabbTree> own_tree;
-    if (!input_tree) input_tree = (own_tree = std::make_unique<AabbTree>(input)).get();
     // The new triangle on the input, within `tolerance`, at the points of a barycentric grid
     // of step 1/4 (its corners aside, which are the output's and the input's).
     auto on_input = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
@@ -328,7 +326,7 @@ long insert_corners(Mesh& output, const Mesh& input, const std::vector<Corner>& 
             for (int j = 0; i + j <= 4; ++j) {
                 if (i == 4 || j == 4 || i + j == 0) continue;
                 const Eigen::Vector3d q = (i * a + j * b + (4 - i - j) * c) / 4.0;
-                if (input_tree->any_within(q, tolerance) < 0) return false;
+                if (input_tree.any_within(q, tolerance) < 0) return false;
             }
         return true;
     };
@@ -447,8 +445,8 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg) {
     return out;
 }
 
-BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options,
-                                const AabbTree* input_tree) {
+BoundarySnapStats snap_boundary(Mesh& output, const Reference& reference, const BoundarySnapParams& options) {
+    const Mesh& input = reference.mesh;
     check_options(options);
     check_indices(input, "snap_boundary input");
     check_indices(output, "snap_boundary output");
@@ -496,7 +494,7 @@ BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundaryS
     // moves left it, passes it by.
     if (!corners.empty())
         stats.corners_inserted = insert_corners(output, input, corners, OutputBoundary(output, options.reach),
-                                                options.min_kappa, input_tree);
+                                                options.min_kappa, reference.tree);
     return stats;
 }
 

@@ -7,15 +7,16 @@
 // untouched.
 #pragma once
 
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/reference.h"
 
 #include <cstdint>
 #include <vector>
 
 namespace liftremesh {
 
-struct BoundarySnapOptions {
+struct BoundarySnapParams {
     //! A boundary vertex of the input is a corner where its boundary turns by more than this
     //! (degrees, in (0, 180)): the angle between the directions of its two boundary edges.
     //! 30 by default: a polyline approximating a smooth curve turns by its edge length over the
@@ -32,10 +33,9 @@ struct BoundarySnapOptions {
     //! or more (a flip).
     double min_area_ratio = 0.25;
     //! A move is also refused if it leaves a triangle around the vertex with a kappa (Eq. 26)
-    //! below this floor and below its kappa before the step (in [0, 1), default 0.3, the
-    //! project's bound on the smallest kappa): a corner left slightly cut is a smaller error than
-    //! a sliver element.
-    double min_kappa = 0.3;
+    //! below this floor and below its kappa before the step (in [0, 1), default kKappaFloor):
+    //! a corner left slightly cut is a smaller error than a sliver element.
+    double min_kappa = kKappaFloor;
 };
 
 struct BoundarySnapStats {
@@ -60,7 +60,7 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 
 //! Moves the boundary vertices of `output` onto the boundary of `input` (both in the same
 //! coordinates; `output` an oriented manifold, as make_manifold() leaves it). Reach of an output
-//! boundary vertex: options.reach times the mean length of its boundary edges.
+//! boundary vertex: params.reach times the mean length of its boundary edges.
 //!  1. each corner of the input's boundary (boundary_corners()), sharpest turn first, takes the
 //!     nearest output boundary vertex within reach that no corner has taken yet and whose move
 //!     is allowed (below), and that vertex goes exactly onto the corner;
@@ -80,13 +80,13 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //!     triangle not turned over against theirs, and lying on the input: within 0.15 of the
 //!     edge's reach of it at the points of a barycentric grid of step 1/4, so that it bridges
 //!     no gap to another part. None is made if the best has a kappa below
-//!     options.min_kappa / 2, as for a corner sharper than about 4.5 degrees at the default
+//!     params.min_kappa / 2, as for a corner sharper than about 4.5 degrees at the default
 //!     floor (kappa 0.15).
 //! A move (steps 1 and 2) is allowed only if it goes out of the output (along the sum of the
 //! outward normals of the vertex's boundary edges, in their triangles' planes: a centroid lies
 //! inside its cell, so the input's boundary lies beyond the output's) and leaves every triangle
 //! around the vertex unflipped, with at least options.min_area_ratio of its area and a kappa of
-//! at least min(options.min_kappa, its kappa before). Moves are made one at a time, corners
+//! at least min(params.min_kappa, its kappa before). Moves are made one at a time, corners
 //! first then by vertex index, each checked against the triangles as the moves before it left
 //! them.
 //! Steps 1 and 2 change positions only: the triangles, the topology and every interior vertex
@@ -97,10 +97,8 @@ std::vector<int32_t> boundary_corners(const Mesh& mesh, double angle_deg = 30.0)
 //! A closed `input` or `output` leaves `output` unchanged, bit for bit. Cost: two edge counts
 //! (O(#F)), one pass over the triangles and O(B log B) for the B boundary vertices and edges;
 //! step 3, for each corner left, 12 distance queries per candidate triangle.
-//! `input_tree`, if given, is AabbTree(input), which step 3 queries; it is built here otherwise,
-//! when a corner is left. Throws InvalidInput if an index is out of range or an option outside
-//! its range.
-BoundarySnapStats snap_boundary(Mesh& output, const Mesh& input, const BoundarySnapOptions& options = {},
-                                const AabbTree* input_tree = nullptr);
+//! Step 3 queries input.tree.
+//! \throw InvalidInput if an index is out of range or a parameter outside its range.
+BoundarySnapStats snap_boundary(Mesh& output, const Reference& input, const BoundarySnapParams& params = {});
 
 } // namespace liftremesh

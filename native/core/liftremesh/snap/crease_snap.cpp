@@ -168,8 +168,9 @@ private:
 
 } // namespace
 
-CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
-                                      const CreaseSnapParams& params) {
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, const CreaseSnapParams& params) {
+    const Mesh& input = reference.mesh;
+    const AabbTree& input_tree = reference.tree;
     check_indices(mesh, "snapped mesh");
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };

@@ -27,27 +27,27 @@
 // tolerance) nothing moves.
 #pragma once
 
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/reference.h"
 
 namespace liftremesh {
 
 struct CreaseSnapParams {
-    //! Vertices at most this far from a crease are moved onto it. The pipeline: 0.35 h (h the
-    //! target edge length): the sites Eq. 10 leaves off a 30-degree edge lie 0.1-0.2 h from it,
-    //! those of the faces' first rows 0.5 h and more. Positive and finite.
+    //! Vertices at most this far from a crease are moved onto it (the pipeline's: steps.h).
+    //! Positive and finite.
     double radius = 0.0;
     //! The vertex nearest to a corner of the creases (where one ends or several meet), if it is
-    //! at most this far, is moved onto it first. The pipeline: 0.5 h.
+    //! at most this far, is moved onto it first. Not negative.
     double corner_radius = 0.0;
-    //! Distance from the input (see above; the pipeline: the Hausdorff refinement's, 0.15 h).
-    //! Positive and finite.
+    //! Distance from the input (see above; the pipeline's: kInputTolerance, steps.h). Positive
+    //! and finite.
     double tolerance = 0.0;
     //! An input edge is an acute crease when its two triangles' normals turn by more than this
     //! (degrees): 120 is an interior angle under 60 degrees.
     double min_turn_deg = 120.0;
     //! See above; the Hausdorff refinement's floor.
-    double kappa_floor = 0.45;
+    double kappa_floor = kKappaFloorOnInput;
 };
 
 struct CreaseSnapStats {
@@ -60,7 +60,6 @@ struct CreaseSnapStats {
 //! AabbTree(input). Keeps the mesh's orientation, manifoldness and Euler characteristic (vertex
 //! moves and flips only; a flip never makes an edge the mesh has). Throws InvalidInput if a
 //! parameter is out of range or an index is.
-CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Mesh& input, const AabbTree& input_tree,
-                                      const CreaseSnapParams& params);
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const CreaseSnapParams& params);
 
 } // namespace liftremesh

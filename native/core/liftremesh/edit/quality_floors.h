@@ -1,0 +1,21 @@
+// The quality floors of the local edits (kappa, Eq. 26): no edit makes a triangle below its
+// floor unless the triangles it replaces were worse already. Each floor weighs what the edit
+// buys against the sliver it may leave.
+#pragma once
+
+namespace liftremesh {
+
+//! Undoing a crossing (repair/untangle.h): two triangles passing through each other are what a
+//! tetrahedral mesher refuses, so a poor triangle is the smaller defect.
+inline constexpr double kKappaFloorUntangle = 0.2;
+
+//! Undoing a fold, a folded pair or a boundary cut short (polish/, edit/edge_collapse.h,
+//! snap/boundary_snap.h): the project's bound on the smallest kappa.
+inline constexpr double kKappaFloor = 0.3;
+
+//! Inserting or moving a vertex onto the input (polish/hausdorff_refinement.h,
+//! snap/crease_snap.h): the surface there is near the input already, so only triangles as good
+//! as those the optimisation leaves are worth the move.
+inline constexpr double kKappaFloorOnInput = 0.45;
+
+} // namespace liftremesh
