@@ -300,7 +300,7 @@ constexpr double kSmallPiece = 0.05;
 
 // One of several pieces, its counts added to the report. A closed piece of at most kSmallPiece of
 // the input's area that does not come out as the surface it is (keeps_piece), being thinner than
-// its cells (the two rings of TSM_103_01_L_DV_A, 0.108 mm high, at 6 sites), is remeshed again
+// its cells (a ring lower than the spacing, given a few sites), is remeshed again
 // with twice the sites while `retry_sites` (shared by all pieces) lasts, each time at most
 // max(64, wanted / 10); if none does, it comes out as its input's triangles
 // (report.parts_kept), as Gmsh keeps a surface smaller than the mesh size with its curves' own

@@ -74,7 +74,7 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
         }
     }, cache);
     // The chunks' pieces and corners in chunk order, each chunk's freed as it is copied: the
-    // run's peak memory is here (on the bunny at 50k vertices).
+    // run's peak memory is here on a large run.
     size_t piece_count = 0, corner_count = 0;
     for (const auto& f : found) {
         piece_count += f.value.pieces.size();

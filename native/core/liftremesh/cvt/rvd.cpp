@@ -225,9 +225,8 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     if (static_cast<long>(cache.seeds.size()) != nf) cache.seeds.assign(nf, -1);
     // Chunks: contiguous runs of the Morton order (their own part of the surface, so their own
     // sites in a thread's cache) with as much work as the others had last time, taken by the
-    // threads as they come. One fixed run per thread left a thread idle at the end of the
-    // diagrams, 0.07-0.19 s a run on t13 and 1 s on the bunny, as the host slows the threads
-    // down unevenly; chunks leave 0.02 s and 0.04 s.
+    // threads as they come. One fixed run per thread leaves threads idle at the end of the
+    // diagram wherever the host slows them down unevenly; many smaller chunks even that out.
     if (static_cast<long>(cache.work.size()) != nf) cache.work.assign(nf, 1);
     const int chunks = rvd_chunks(surface);
     std::vector<long> bounds(static_cast<size_t>(chunks) + 1, nf);

@@ -2,14 +2,12 @@
 // - the few very short edges the restricted Delaunay triangulation leaves where two sites crowd
 //   onto the same crease junction (the feature term pulls both there, Section 6.2.2);
 // - pairs folded shut: two triangles on an edge turned onto each other, their apexes close
-//   together (FreeCAD's chip resistor 1210_SMD, seed 1: an edge 0.086 long at a corner of the
-//   body, its triangles turning by 175 degrees, their apexes 0.003 apart; the inductor
-//   I22_2_5_16: 177 degrees, apexes 0.018 apart at an edge of 0.33). Neither triangle is far from
-//   the input, nor do they cross, so neither the fold flips of quality_polish.h nor untangle.h
-//   see them; a flip alone would leave two slivers. The edge is flipped and the short new edge
-//   between the apexes collapsed, which takes both triangles out and joins their apexes. Near a
-//   knife edge of the input (FreeCAD's connector TSM_104, seed 3: 172 degrees, apexes 12% of the
-//   edge apart, one of them on the knife edge) such a pair stands for it and is kept.
+//   together (a short edge at a corner of a solid, its triangles turning by nearly 180
+//   degrees). Neither triangle is far from the input, nor do they cross, so neither the fold
+//   flips of quality_polish.h nor untangle.h see them; a flip alone would leave two slivers. The
+//   edge is flipped and the short new edge between the apexes collapsed, which takes both
+//   triangles out and joins their apexes. Near a knife edge of the input such a pair, one apex
+//   on the knife edge, stands for it and is kept.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"
@@ -38,8 +36,8 @@ struct FoldedPairParams {
     double min_turn_deg = 150.0;
     //! and their apexes lie closer together than this times the edge's length, in (0, 1). A
     //! knife edge's apexes stand apart by 2 sin(beta / 2) times their distance from it (beta its
-    //! interior angle: 0.52 at 30 degrees); the pairs removed in the Idflibs survey are 0.04
-    //! to 0.21.
+    //! interior angle: 0.52 at 30 degrees, 0.25 at 14 degrees): below 0.25 a pair is folded
+    //! shut unless it follows a knife edge sharper than that, which knife_turn_deg keeps.
     double gap_ratio = 0.25;
     //! No triangle the collapse leaves has a kappa (Eq. 26) under this or under the worst of the
     //! triangles around the four vertices before it, whichever is lower. In [0, 1].

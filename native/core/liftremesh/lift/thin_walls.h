@@ -4,9 +4,8 @@
 // Two points on opposite sides of a wall of thickness t, with opposite normals, lie
 // sqrt(t^2 + 4 nu^2) apart on the lifted surface. Where that is well under the sites' spacing h,
 // a site's restricted Voronoi cell reaches across the wall and the restricted Delaunay
-// triangulation joins the two sides: the paper's warning about thin regions (Section 2.2), on a
-// thin-walled CAD part (gmsh_t13_data.stl, walls 2 units thick) the result's Euler characteristic went
-// -2 -> -18, -52, -24 at 2000, 3000, 4000 vertices. Lifting each vertex by
+// triangulation joins the two sides with handles through the wall (a wrong Euler
+// characteristic): the paper's warning about thin regions (Section 2.2). Lifting each vertex by
 //     nu_v = max(nu, 1/2 sqrt(h^2 - t_v^2))
 // puts the two sides at least h apart, and changes nothing within a side (its normals do not
 // turn across a flat wall), nor anywhere the far side is h away or more.
@@ -31,19 +30,18 @@ constexpr double kWallTaperDeg = 25.0;
 //! turned over in a face lies beside the vertex, not across); infinity if there is none nearer
 //! than `reach`. Two faces meeting at a knife edge of a larger interior angle are
 //! close only because they meet there: lifting them apart would keep the sites farther off the
-//! edge (crease_snap.h), so they are no wall (on the shared hinge, a lip of 49 degrees). A
-//! wall's rim, where the vertex has triangles of a side and of the rim's face, is still on
-//! the wall. Parallel (OpenMP), the same for any thread count.
+//! edge (crease_snap.h), so they are no wall. A wall's rim, where the vertex has triangles of a
+//! side and of the rim's face, is still on the wall. Parallel (OpenMP), the same for any thread
+//! count.
 Eigen::VectorXd wall_thickness(const Mesh& mesh, const AabbTree& tree, double reach);
 
 //! Where a wall's far side is nearer than `reach` only across the inside of a large triangle,
 //! none of whose vertices lies across from it (a CAD tessellation's few large triangles on
-//! the two sides of a narrow slot, their corners offset from each other: FreeCAD's inductor
-//! RLF_7030, a slot 0.1 mm wide between its body and a terminal, at 6000 vertices with edges
-//! of 0.22 mm), a lifting per vertex misses the wall. The triangles are then split, edge
-//! midpoint by edge midpoint, where the lifting an edge's midpoint or a triangle's centroid
-//! needs exceeds the one interpolated from its vertices by more than `tolerance`, until no
-//! edge so split would be shorter than `min_edge`. The split mesh describes the same surface;
+//! the two sides of a slot narrower than the spacing, their corners offset from each other), a
+//! lifting per vertex misses the wall. The triangles are then split, edge midpoint by edge
+//! midpoint, where the lifting an edge's midpoint or a triangle's centroid needs exceeds the one
+//! interpolated from its vertices by more than `tolerance`, until no edge so split would be
+//! shorter than `min_edge`. The split mesh describes the same surface;
 //! its triangles lie in those of the input (`parent`), so that the normals and densities
 //! interpolated over it are the input's own.
 struct WallSamplingParams {
@@ -86,7 +84,7 @@ Matrix with_midpoints(const Matrix& values, const std::vector<std::array<int32_t
 
 //! The thickness sqrt(spacing^2 - 4 nu^2) (0 if spacing <= 2 nu) from which nu alone keeps a
 //! wall's sides a spacing apart: the reach wall_thickness() needs, no wall being thinner when it
-//! is 0 (the bunny at 50k vertices: spacing 0.008, 2 nu 0.02).
+//! is 0 (a spacing below 2 nu).
 double wall_reach(double nu, double spacing);
 
 //! The lifting scale for one thickness t, as thin_wall_lifting.

@@ -1,13 +1,13 @@
 // The input split into the pieces that are remeshed on their own: each closed connected
 // component (a solid's boundary) apart from the rest. A FreeCAD assembly exported as one STL
-// has solids that touch or nearly touch (Mod/Idf/Idflibs RLF_12545: two terminals 0.01 mm from
-// the body, at edges of 0.2 mm); remeshed together, their restricted Voronoi cells reach across
-// the gap and the restricted Delaunay triangulation joins the solids (Euler characteristic 0
-// where the three solids have 6, kappa min 0.000), as Section 2.2 warns for regions where the
-// surface is thin. A closed component shares no vertex with the others, so each is a surface of
-// its own, whatever lies near it, as Gmsh and FreeCAD's Mesh workbench treat each solid. Open
-// components stay together, as one piece: they are patches of one surface with gaps between
-// them (an STL export's cracks), which the geometric neighbourhoods of Section 5.2.1 join.
+// has solids that touch or nearly touch, closer together than the edge length; remeshed
+// together, their restricted Voronoi cells reach across the gap and the restricted Delaunay
+// triangulation joins the solids with slivers across it (a wrong Euler characteristic), as
+// Section 2.2 warns for regions where the surface is thin. A closed component shares no vertex
+// with the others, so each is a surface of its own, whatever lies near it, as Gmsh and FreeCAD's
+// Mesh workbench treat each solid. Open components stay together, as one piece: they are patches
+// of one surface with gaps between them (an STL export's cracks), which the geometric
+// neighbourhoods of Section 5.2.1 join.
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"

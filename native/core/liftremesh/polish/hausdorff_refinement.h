@@ -16,8 +16,7 @@
 //   quality flip of a nearly planar quad raises the worse kappa without moving the surface away
 //   from the input (quality_polish.h);
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
-// the tolerance; where a strongly curved part does not, the points inserted bring it closer too
-// (the bunny at 50000 vertices takes 40).
+// the tolerance; where a strongly curved part does not, the points inserted bring it closer too.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"

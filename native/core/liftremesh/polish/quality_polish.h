@@ -1,23 +1,20 @@
 // The worst triangles raised by local edits that keep the surface on the input: the last step of
 // the repair. The restricted Delaunay triangulation of the optimised sites is Delaunay in the
-// lifted space, not in the output's planes, and 100 iterations leave a few sites short of
-// centroidal: on the shared CAD meshes some flat quads come out split along their longer
-// diagonal (gmsh_lever.stl, seed 3: a triangle of kappa 0.32 whose flip gives 0.67 and 0.73) and
-// some flat triangles obtuse (the lever, seed 10: 0.37 with its three vertices on one plane).
-// As Gmsh, MMG and CGAL do after their own steps:
+// lifted space, not in the output's planes, and a finite optimisation leaves a few sites short
+// of centroidal: some flat quads come out split along their longer diagonal and some flat
+// triangles obtuse. As Gmsh, MMG and CGAL do after their own steps:
 // - folds: an edge whose two triangles turn by more than 90 degrees and reach farther from the
-//   input than the tolerance (on t13, seed 3: a triangle across the end of a wall thinner than
-//   the edge length, folded 157 degrees onto its neighbour, 0.74 from the input) is flipped when
-//   both new triangles lie on it (fold_flip_fits_input, flip_rules.h); a crease of the input, followed, is
-//   near it and left alone;
+//   input than the tolerance (a triangle across the end of a wall thinner than the edge length,
+//   folded onto its neighbour) is flipped when both new triangles lie on it
+//   (fold_flip_fits_input, flip_rules.h); a crease of the input, followed, is near it and left
+//   alone;
 // - caps, first: a triangle with an angle of 150 degrees or more, its apex near the opposite edge
-//   (three vertices along a crease joined across it: FreeCAD's inductor RLF_7030, seed 3, kappa
-//   0.009 at a corner of its top), has that edge flipped when both new triangles lie on the input
-//   (as for folds), are better than the worse old one, and neither turns by more than 120 degrees
-//   from the cap's neighbour it then borders. The crease then runs through the apex. The cap's
-//   normal, near zero, is not weighed, as the flips below would. A cap on the rim of a plate
-//   thinner than the edge length (SOT404: 0.01 mm at edges of 0.04 mm, kappa 0.09) stands for
-//   that rim and is kept: flipped, the plate would fold onto itself;
+//   (three vertices along a crease joined across it), has that edge flipped when both new
+//   triangles lie on the input (as for folds), are better than the worse old one, and neither
+//   turns by more than 120 degrees from the cap's neighbour it then borders. The crease then runs
+//   through the apex. The cap's normal, near zero, is not weighed, as the flips below would. A
+//   cap on the rim of a plate thinner than the edge length stands for that rim and is kept:
+//   flipped, the plate would fold onto itself;
 // - flips: an edge is flipped when its quad is nearly planar and the worse kappa (Eq. 26) of its
 //   two triangles goes up (EditableMesh::flip_improves_quality: never across a sharp edge, whose
 //   triangles turn by more than 30 degrees), and the new diagonal's midpoint is no farther from

@@ -1,14 +1,14 @@
 // Triangles of the output that pass through each other, untangled by edge flips, then by vertex
-// moves: the repair's last step. Where the input has features smaller than the edge length (the
-// peers' FreeCAD connector TSM_103: 0.108 mm between housings 0.381 mm apart, at edges of 0.1 to
-// 0.26 mm) the restricted Delaunay triangulation can fold there, and a fold that passes through
-// its neighbours is what a tetrahedral mesher (TetGen, Netgen, Gmsh) refuses.
+// moves: the repair's last step. Where the input has features smaller than the edge length (two
+// parts of a solid closer together than an edge) the restricted Delaunay triangulation can fold
+// there, and a fold that passes through its neighbours is what a tetrahedral mesher (TetGen,
+// Netgen, Gmsh) refuses.
 // - Flips first, since they move no vertex: an edge of a crossing triangle is flipped when that
 //   lowers the number of crossings of its two triangles with the rest of the mesh, the new
 //   triangles are no farther from the input than the old ones (or within the tolerance) and no
 //   sliver is made.
-// - Then moves, for what the flips leave (FreeCAD's SOT23 package, seed 1: 38 crossings after
-//   the flips, 5 after the moves): an inner vertex of a crossing triangle moves to whichever of
+// - Then moves, for what the flips leave (a vertex pushed through the other side, which no flip
+//   of its edges takes back): an inner vertex of a crossing triangle moves to whichever of
 //   the points 0, 1/4, ..., 1 of the way to its neighbours' centroid, put on the input (closest
 //   point), leaves its fan the fewest crossings (with the rest and among themselves), if fewer
 //   than before, and then the best worst kappa; under the same rules as a flip, and no more of

@@ -16,15 +16,16 @@
 // nearest first, is moved onto it (its closest point there), when the crease is cut deeper than
 // `tolerance` there (the vertex's triangles lie farther than that from the point). The edges of
 // its fan that then cross the wedge are flipped (the other diagonal of their quad lies at most
-// half as far from the input: crease_flip_fits), and so are those whose quality flip keeps the
-// surface (quality_flip_keeps_surface). The move and its flips stand only together, and only if
+// half as far from the input: crease_flip_fits, flip_rules.h), and so are those whose quality
+// flip keeps the surface (quality_flip_keeps_surface). The move and its flips stand only
+// together, and only if
 // - no more of the triangles they change turn from the input's normal nearest to their
 //   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
 // - the worst kappa (Eq. 26) of those triangles is at least kappa_floor;
 // - none of them ends farther from the input than both `tolerance` and the farthest of them
 //   before.
-// Otherwise the mesh is left as it was. On the shared CAD meshes (creases followed within the
-// tolerance) nothing moves.
+// Otherwise the mesh is left as it was. Where the output follows the creases within the
+// tolerance already, nothing moves.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"

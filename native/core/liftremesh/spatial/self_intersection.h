@@ -25,9 +25,10 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
 //! the neighbour lies in its plane); of two sharing a vertex only the sides away from it are
 //! tested. Coplanar overlaps are not counted. `tree` is AabbTree(mesh). Runs in parallel
 //! (OpenMP's default thread count); the count does not depend on it. At most
-//! kCandidatesPerTriangle #F pairs of triangles whose boxes meet are tested (a surface has 6 to 8
-//! #F: t13 and its remeshing, the bunny's): past that, in a soup of long triangles across each other's boxes, the
-//! count is of those tested only. Throws InvalidInput if an index is out of range.
+//! kCandidatesPerTriangle #F pairs of triangles whose boxes meet are tested (a surface has 6 to
+//! 8 #F: a triangle's box meets those of the dozen triangles around its corners): past that,
+//! in a soup of long triangles across each other's boxes, the count is of those tested only.
+//! Throws InvalidInput if an index is out of range.
 constexpr long kCandidatesPerTriangle = 200;
 long count_self_intersections(const Mesh& mesh, const AabbTree& tree);
 
