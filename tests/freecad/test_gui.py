@@ -309,6 +309,35 @@ class TaskPanelTest(GuiTestCase):
         self.assertIn("unchanged", self.boxes.texts("warning")[0])
 
 
+class JobStagesTest(unittest.TestCase):
+    def test_every_stage_the_module_reports_has_a_span_and_a_name(self):
+        """The progress bar and status line know each stage the core reports (pipeline.cpp's
+        StageClock), so none falls back to the bar's start or a raw name."""
+        import MeshPart
+        import numpy as np
+        from LiftRemesh.gui import job
+
+        box = Part.makeBox(20, 12, 6).cut(Part.makeCylinder(3, 6, FreeCAD.Vector(10, 6, 0)))
+        mesh = MeshPart.meshFromShape(Shape=box, LinearDeflection=0.1, AngularDeflection=0.5)
+        points = np.array([tuple(p) for p in mesh.Topology[0]], dtype=np.float64)
+        triangles = np.array(mesh.Topology[1], dtype=np.int64)
+        stages = []
+
+        def progress(stage, iteration, total, energy):
+            if stage not in stages:
+                stages.append(stage)
+            return True
+
+        native.load().remesh(points, triangles, vertices=500, progress=progress)
+        self.assertIn("snap", stages)  # the stages after the triangulation are reported too
+        self.assertIn("polish", stages)
+        for stage in stages:
+            self.assertIn(stage, job.STAGE_SPANS)
+            self.assertIn(stage, job.STAGE_NAMES)
+        spans = [job.STAGE_SPANS[stage] for stage in stages]
+        self.assertEqual(spans, sorted(spans), "the bar goes forward through the stages: %s" % stages)
+
+
 class FailureTest(GuiTestCase):
     def assert_remesh_refused(self, culprit, *selection):
         """Running Remesh on `selection` shows one error naming `culprit` and adds nothing."""

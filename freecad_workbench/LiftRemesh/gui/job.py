@@ -16,7 +16,10 @@ STAGE_SPANS = {
     "normals": (0.03, 0.08),
     "optimize": (0.08, 0.85),
     "rdt": (0.85, 0.90),
-    "repair": (0.90, 0.93),
+    "repair": (0.90, 0.91),
+    "snap": (0.91, 0.92),
+    "polish": (0.92, 0.925),
+    "untangle": (0.925, 0.93),
     "quality": (0.93, 1.00),
 }
 
@@ -26,6 +29,9 @@ STAGE_NAMES = {
     "optimize": "optimising",
     "rdt": "extracting the triangles",
     "repair": "repairing",
+    "snap": "snapping onto the input's boundary and creases",
+    "polish": "polishing the triangles",
+    "untangle": "untangling crossings",
     "quality": "measuring the quality",
 }
 
