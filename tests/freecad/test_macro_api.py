@@ -160,7 +160,7 @@ class MacroApiTest(unittest.TestCase):
         about 0.2 mm. Remeshed together, the three solids merged (Euler characteristic 0 for 6,
         kappa min 0.000); each is now remeshed on its own (solid_parts.h). Its sharp edges come
         out 2.3% short (ratio 0.977, measured), the body's 3% (210.7 to 204.3 mm, 60 degrees): the
-        sharp-edge gap the README lists for hinge and lever, hence 3% here, not 2%."""
+        sharp-edge gap docs/known-gaps.md lists for hinge and lever, hence 3% here, not 2%."""
         shape = step_part("RLF_12545.stp")
         self.assertEqual(len(shape.Solids), 3)
         self.assertEqual(mesh_checks.shape_euler_characteristic(shape), 6)
@@ -177,7 +177,7 @@ class MacroApiTest(unittest.TestCase):
         characteristic -12 for 2; the triangles are now split where their inside lies across a
         wall (thin_walls.h: sample_wall_thickness). Its flanges and terminals, 0.1 mm thick, are
         still cut by edges twice as long: kappa min 0.28 and Hausdorff distance 0.58% of the
-        diagonal (0.96% before), sharp edges 5% short (measured; the README's known gap of parts
+        diagonal (0.96% before), sharp edges 5% short (measured; docs/known-gaps.md's gap of parts
         thinner than the edge length), so only the topology, volume and distance are checked."""
         shape = step_part("RLF_7030.stp")
         self.assertEqual(len(shape.Solids), 1)

@@ -70,7 +70,7 @@ int expected_euler_characteristic(const RemeshReport& report);
 //! topology: its Euler characteristic may be expected_euler_characteristic().
 std::vector<std::string> report_warnings(const RemeshReport& report);
 
-//! The report as a JSON object (keys documented in the README), indented by two spaces and
+//! The report as a JSON object (keys documented in docs/report.md), indented by two spaces and
 //! ending with a newline. Doubles have 9 significant digits; NaN and infinities are written
 //! as null. A stage listed twice in `timings` appears once, with the summed time.
 std::string to_json(const RemeshReport& report);

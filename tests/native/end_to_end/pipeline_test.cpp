@@ -446,7 +446,7 @@ TEST_P(SharedMeshSharpEdges, LengthWithinTwoPercentOfTheInput) {
 INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMeshSharpEdges, ::testing::Values("gmsh_t13_data.stl", "pmp_fandisk.off"),
                          test::mesh_name);
 
-// KNOWN GAP, not met (issue "The remesh core", README's known gaps): measured ratios 1.0457
+// KNOWN GAP, not met (issue "The remesh core", docs/known-gaps.md): measured ratios 1.0457
 // (hinge) and 0.9600 (lever), from a crease just under the 60-degree threshold and a
 // tessellation's ring of slivers:
 // - hinge: cylinders meet cones along three circles (countersunk holes) where every input edge
@@ -465,7 +465,7 @@ INSTANTIATE_TEST_SUITE_P(DISABLED_KnownGap, SharedMeshSharpEdges,
                          ::testing::Values("netgen_hinge.stl", "gmsh_lever.stl"), test::mesh_name);
 
 // The same criterion measured off its threshold, as proposed to the issue's owner for the two
-// known gaps above (README): within 2% with the threshold at 55 degrees and at 65, so that a crease
+// known gaps above (docs/known-gaps.md): within 2% with the threshold at 55 degrees and at 65, so that a crease
 // of about 60 (the hinge's rims, 58.9) counts in both meshes or in neither, and with the input's
 // edges of triangles narrower than a hundredth of the target edge length not counted (the
 // lever's ring of slivers, 0.0011 to 0.014 wide at edges of 2.5). Met on all four.
@@ -489,7 +489,7 @@ INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMeshSharpEdgesOffTheThreshold, ::test
 
 // t13 is a shell with walls 2 units thick; at 2000 to 4000 vertices the edges are 1.9 to 2.7
 // times that. Lifted with nu alone its result came out with chi -18, -52 and -24 (input -2) and
-// 1.2% to 1.6% of the diagonal away from it (seed 1, README); with the thin walls lifted apart
+// 1.2% to 1.6% of the diagonal away from it (seed 1); with the thin walls lifted apart
 // (thin_walls.h) it keeps its topology (0.44% to 1.27% away: the walls' rims, 2 wide, are cut).
 TEST(Remesh, AThinWalledPartKeepsItsTopologyAtCoarseSizes) {
     LIFTREMESH_REQUIRE_SHARED(path, "gmsh_t13_data.stl");

@@ -1,5 +1,5 @@
 // Vertices onto the input's acute creases: the repair of knife edges, where the feature term
-// leaves its sites off the edge (Section 6.2.2 and the README's known gap). Where the input's
+// leaves its sites off the edge (Section 6.2.2 and docs/known-gaps.md). Where the input's
 // two faces meet at an interior angle under 60 degrees, Eq. 10 has its minimum for a site in
 // the wedge's middle plane at r = c cos(beta) / (cos^2(beta) + sigma^2 sin^2(beta)) from the edge
 // (2 beta the interior angle, c the distance of its cell's centroid along the faces): 0.37 c at
