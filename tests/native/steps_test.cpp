@@ -34,11 +34,11 @@ TEST(StepSettings, DistancesScaleWithTheSpacingAndCountsWithTheSites) {
     EXPECT_NEAR(b.hausdorff_refinement.sample_spacing, 2 * a.hausdorff_refinement.sample_spacing, 1e-15);
     EXPECT_NEAR(b.crease_snap.radius, 2 * a.crease_snap.radius, 1e-15);
     EXPECT_NEAR(b.hole_reach, 2 * a.hole_reach, 1e-15);
-    EXPECT_EQ(b.patch_spacing, 0.02);
+    EXPECT_EQ(b.patch_refinement.spacing, 0.02);
     // The tolerance lies below the crease snap's radius, and that below a corner's reach.
     EXPECT_LT(a.crease_snap.tolerance, a.crease_snap.radius);
     EXPECT_LT(a.crease_snap.radius, a.crease_snap.corner_radius);
-    EXPECT_EQ(a.patch_max_added, 600);
+    EXPECT_EQ(a.patch_refinement.max_added, 600);
     EXPECT_EQ(a.hausdorff_refinement.max_inserted, 60);
     EXPECT_EQ(b.hausdorff_refinement.max_inserted, 120);
 }

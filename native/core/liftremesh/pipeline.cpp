@@ -229,11 +229,15 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     report.triangles_removed += repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
     if (params.fill_holes) {
         const Eigen::Index first_fill = out.triangles.rows();
-        report.holes_filled += fill_holes(out, hole_is_artefact(*piece.unit, out.points, steps.hole_reach)); // Section 5.2.2
-        refine_patches(out, first_fill, steps.patch_spacing, steps.patch_max_added);
+        HoleFillingParams holes;
+        holes.should_fill = hole_is_artefact(*piece.unit, out.points, steps.hole_reach); // Section 5.2.2
+        report.holes_filled += fill_holes(out, holes).filled;
+        PatchRefinementParams patches = steps.patch_refinement;
+        patches.first = first_fill;
+        refine_patches(out, patches);
     }
     if (out.triangles.rows() == 0) throw TopologyFailure("no triangle is left after the manifold repair");
-    report.edges_collapsed += collapse_short_edges(out);
+    report.edges_collapsed += collapse_short_edges(out, steps.short_edges).collapsed;
     clock.end();
 
     // The surface onto the input's boundary and features, in the input's coordinates, so that

@@ -8,8 +8,10 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.hole_reach = 1.5 * spacing;
     // Vertices inside the patches that fill holes, which the paper leaves empty: at most a
     // tenth of those asked for.
-    s.patch_spacing = spacing;
-    s.patch_max_added = sites / 10;
+    s.patch_refinement.spacing = spacing;
+    s.patch_refinement.max_added = sites / 10;
+    // Interior edges under 0.35 times the median: the crowded sites at crease junctions.
+    s.short_edges.ratio = 0.35;
 
     // The tolerance of every step that keeps the surface on the input (kInputTolerance).
     const double tolerance = kInputTolerance * spacing * scale;

@@ -7,6 +7,7 @@
 #include "liftremesh/edit/edge_collapse.h"
 #include "liftremesh/polish/hausdorff_refinement.h"
 #include "liftremesh/polish/quality_polish.h"
+#include "liftremesh/repair/patch_refinement.h"
 #include "liftremesh/repair/untangle.h"
 #include "liftremesh/snap/boundary_snap.h"
 #include "liftremesh/snap/crease_snap.h"
@@ -23,9 +24,11 @@ inline constexpr double kInputTolerance = 0.15;
 struct StepSettings {
     // In the unit ball (Section 5.1), where the repair runs until the surface goes back to the
     // input's coordinates:
-    double hole_reach = 0.0;    //!< an output hole along the input's boundary within this is the input's
-    double patch_spacing = 0.0; //!< refine_patches' h
-    long patch_max_added = 0;   //!< refine_patches' most vertices added
+    //! An output hole along the input's boundary within this is the input's: the pipeline's
+    //! HoleFillingParams::should_fill, which needs the surface and the input, is made from it.
+    double hole_reach = 0.0;
+    PatchRefinementParams patch_refinement; //!< but `first`, which the caller sets
+    ShortEdgeParams short_edges;            //!< collapse_short_edges' ratio
     // In the input's coordinates:
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;

@@ -40,10 +40,12 @@ Mesh grid_with_round_hole() {
 
 // Fills the holes of a grid_with_round_hole() but the square's own border (x = 0 or 10).
 long fill_inner_holes(Mesh& m) {
-    return fill_holes(m, [&](const std::vector<int32_t>& loop) {
+    HoleFillingParams inner;
+    inner.should_fill = [&](const std::vector<int32_t>& loop) {
         return std::none_of(loop.begin(), loop.end(),
                             [&](int32_t v) { return m.points(v, 0) == 0.0 || m.points(v, 0) == 10.0; });
-    });
+    };
+    return fill_holes(m, inner).filled;
 }
 
 } // namespace
@@ -58,7 +60,7 @@ TEST(PatchRefinement, StaircaseHoleInAGridGetsWellShapedTriangles) {
     const double cdt_kappa = min_kappa(m, first);
     const Mesh filled = m;
 
-    const long added = refine_patches(m, first, 0.5, 1000);
+    const long added = refine_patches(m, {first, 0.5, 1000}).inserted;
     EXPECT_GT(added, 50); // about hole area / (sqrt(3)/2 h^2) = 130 interior vertices at most
     EXPECT_EQ(m.points.topRows(filled.points.rows()), filled.points); // no vertex of before moves
     EXPECT_EQ(m.triangles.topRows(first), filled.triangles.topRows(first)); // nor a triangle before the patch
@@ -76,9 +78,9 @@ TEST(PatchRefinement, StaircaseHoleInAGridGetsWellShapedTriangles) {
 TEST(PatchRefinement, CapHoleOnASphereIsClosedFacingOutward) {
     Mesh m = with_hole(make_icosphere(3), [](const Eigen::Vector3d& c) { return c.z() > 0.75; });
     const Eigen::Index first = m.triangles.rows();
-    ASSERT_EQ(fill_holes(m), 1);
+    ASSERT_EQ(fill_holes(m, {}).filled, 1);
     const double h = 2.0 * std::asin(0.5 * (corner(m, 0, 1) - corner(m, 0, 0)).norm()); // about the mesh's edge
-    EXPECT_GT(refine_patches(m, first, h, 1000), 0);
+    EXPECT_GT(refine_patches(m, {first, h, 1000}).inserted, 0);
     const Topology t = topology(m);
     EXPECT_TRUE(t.closed_oriented_manifold());
     EXPECT_EQ(t.chi, 2);
@@ -89,11 +91,11 @@ TEST(PatchRefinement, CapHoleOnASphereIsClosedFacingOutward) {
 TEST(PatchRefinement, NothingToRefineAndBadArguments) {
     Mesh m = make_icosphere(1);
     const Mesh before = m;
-    EXPECT_EQ(refine_patches(m, m.triangles.rows(), 0.1, 1000), 0);
+    EXPECT_EQ(refine_patches(m, {m.triangles.rows(), 0.1, 1000}).inserted, 0);
     EXPECT_EQ(m.points, before.points);
     EXPECT_EQ(m.triangles, before.triangles);
-    EXPECT_THROW(refine_patches(m, m.triangles.rows() + 1, 0.1, 1000), InvalidInput);
-    EXPECT_THROW(refine_patches(m, 0, 0.0, 1000), InvalidInput);
+    EXPECT_THROW(refine_patches(m, {m.triangles.rows() + 1, 0.1, 1000}), InvalidInput);
+    EXPECT_THROW(refine_patches(m, {0, 0.0, 1000}), InvalidInput);
 }
 
 TEST(PatchRefinement, AddsNoMoreVerticesThanAllowed) {
@@ -101,8 +103,8 @@ TEST(PatchRefinement, AddsNoMoreVerticesThanAllowed) {
     const Eigen::Index first = m.triangles.rows();
     const long before = m.points.rows();
     ASSERT_EQ(fill_inner_holes(m), 1);
-    EXPECT_EQ(refine_patches(m, first, 0.5, 20), 20);
+    EXPECT_EQ(refine_patches(m, {first, 0.5, 20}).inserted, 20);
     EXPECT_EQ(m.points.rows(), before + 20);
     EXPECT_TRUE(topology(m).oriented_manifold());
-    EXPECT_EQ(refine_patches(m, first, 0.5, 0), 0); // nothing more to add: flips and smoothing only
+    EXPECT_EQ(refine_patches(m, {first, 0.5, 0}).inserted, 0); // nothing more to add: flips and smoothing only
 }

@@ -183,7 +183,7 @@ TEST(Repair, TwoSpheresTouchingAtAVertexKeepTheLargerFan) {
     EXPECT_EQ(boundary_loops(m).size(), 1u);
     EXPECT_EQ(m.points.rows(), A.points.rows() + B.points.rows() - 1);
 
-    EXPECT_EQ(fill_holes(m), 1);
+    EXPECT_EQ(fill_holes(m, {}).filled, 1);
     top = topology(m);
     EXPECT_TRUE(top.closed_oriented_manifold());
     EXPECT_EQ(top.chi, 4); // two spheres

@@ -237,25 +237,25 @@ private:
 
 } // namespace
 
-long collapse_short_edges(Mesh& mesh, double ratio) {
-    if (mesh.triangles.rows() == 0) return 0;
+ShortEdgeStats collapse_short_edges(Mesh& mesh, const ShortEdgeParams& params) {
+    if (mesh.triangles.rows() == 0) return {};
     std::vector<EdgeCount> edges = edge_counts(mesh.triangles);
     std::vector<double> lengths;
     lengths.reserve(edges.size());
     for (const EdgeCount& e : edges) lengths.push_back((position(mesh, e.a) - position(mesh, e.b)).norm());
     std::vector<double> sorted = lengths;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double limit = ratio * sorted[sorted.size() / 2];
+    const double limit = params.ratio * sorted[sorted.size() / 2];
 
     std::vector<std::tuple<double, int32_t, int32_t>> candidates;
     for (size_t i = 0; i < edges.size(); ++i)
         if (edges[i].count == 2 && lengths[i] < limit) candidates.emplace_back(lengths[i], edges[i].a, edges[i].b);
-    if (candidates.empty()) return 0;
+    if (candidates.empty()) return {};
     std::sort(candidates.begin(), candidates.end());
 
     Collapser collapser(mesh);
     for (const auto& [length, a, b] : candidates) collapser.collapse(a, b, collapser.worst_kappa_around({a, b}));
-    return collapser.finish();
+    return {collapser.finish()};
 }
 
 FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& reference, const FoldedPairParams& params) {

@@ -489,12 +489,13 @@ std::vector<std::vector<int32_t>> boundary_loops(const Mesh& mesh) {
     return trace_loops(hole_edges(mesh.triangles), mesh.points.rows());
 }
 
-long fill_holes(Mesh& mesh, const std::function<bool(const std::vector<int32_t>&)>& should_fill) {
+HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params) {
+    const auto& should_fill = params.should_fill;
     check_indices(mesh, "fill_holes");
     const auto nv = mesh.points.rows();
     const std::vector<HoleEdge> edges = hole_edges(mesh.triangles);
     const auto loops = trace_loops(edges, nv);
-    if (loops.empty()) return 0;
+    if (loops.empty()) return {};
 
     std::unordered_map<uint64_t, int> edge_triangle; // boundary edge -> its one triangle
     for (const HoleEdge& e : edges) edge_triangle[edge_key(e.from, e.to)] = e.tri;
@@ -544,7 +545,7 @@ long fill_holes(Mesh& mesh, const std::function<bool(const std::vector<int32_t>&
         for (size_t k = 0; k < added.size(); ++k)
             for (int j = 0; j < 3; ++j) mesh.triangles(old + static_cast<Eigen::Index>(k), j) = added[k][j];
     }
-    return filled;
+    return {filled};
 }
 
 } // namespace liftremesh

@@ -24,23 +24,40 @@ namespace liftremesh {
 //! O(#F log #F).
 std::vector<std::vector<int32_t>> boundary_loops(const Mesh& mesh);
 
+struct HoleFillingStats {
+    long filled = 0; //!< holes (boundary loops) filled
+};
+
+//! Which holes to fill. The test is a predicate, not `const Reference& input` as the steps
+//! after the repair take: the pipeline decides which holes are artefacts by the distance of a
+//! loop's vertices to the input's boundary edges (in the unit ball), and Reference's tree is
+//! over the input's triangles in the input's coordinates, so that expressing the test through
+//! it would need another tree (over the unit-ball input's boundary) the pipeline does not
+//! have at that point. The predicate keeps the choice with the caller.
+struct HoleFillingParams {
+    //! Fill the loop (boundary_loops()' convention, 3 or more vertices) when true; when empty,
+    //! every loop is filled.
+    std::function<bool(const std::vector<int32_t>&)> should_fill;
+};
+
 //! Fills every boundary loop (as given by boundary_loops(), with its convention) for which
-//! `should_fill(loop)` is true (all loops when it is empty; loops of fewer than 3 vertices are
-//! never offered). Section 5.2.2: a loop of 3 vertices gets its one triangle; a longer one is
-//! projected onto its best-fit plane (PCA; normal = least-variance axis, oriented like the
-//! triangles around the hole) and, if the projected polygon is simple, triangulated by its
-//! constrained Delaunay triangulation (ear clipping, best kappa first, then Lawson flips of the
-//! diagonals until locally Delaunay); otherwise (or if the edge rule below blocks every planar
-//! ear) by greedy ear clipping in 3D taking the best-kappa ear that faces like the loop.
+//! `params.should_fill(loop)` is true (all loops when it is empty; loops of fewer than 3
+//! vertices are never offered). Section 5.2.2: a loop of 3 vertices gets its one triangle; a
+//! longer one is projected onto its best-fit plane (PCA; normal = least-variance axis, oriented
+//! like the triangles around the hole) and, if the projected polygon is simple, triangulated by
+//! its constrained Delaunay triangulation (ear clipping, best kappa first, then Lawson flips of
+//! the diagonals until locally Delaunay); otherwise (or if the edge rule below blocks every
+//! planar ear) by greedy ear clipping in 3D taking the best-kappa ear that faces like the loop.
 //! Rules: no vertex is added or moved; every new triangle follows the loop order, so it is
 //! oriented like the surface; no new triangle creates an edge the mesh (or an earlier fill)
 //! already has, and a loop that cannot be triangulated under that rule is left open; a 3-loop
 //! that is already a triangle of the mesh (a lone triangle's boundary) is left open. A zero-area
 //! triangle is made only by the 3D fallback when no other ear is valid (a collinear loop), so
 //! that even such a loop closes. New triangles are appended after the existing ones, whose order is unchanged.
-//! Returns the number of holes filled. The mesh should be an oriented manifold
-//! (make_manifold) on entry and then stays one. O(n^2) per loop of n vertices. Throws
-//! InvalidInput if an index is out of range.
-long fill_holes(Mesh& mesh, const std::function<bool(const std::vector<int32_t>&)>& should_fill = {});
+//! Returns the number of holes filled (HoleFillingStats::filled). The mesh should be an
+//! oriented manifold (make_manifold) on entry and then stays one. O(n^2) per loop of n
+//! vertices.
+//! \throw InvalidInput if an index is out of range.
+HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params);
 
 } // namespace liftremesh

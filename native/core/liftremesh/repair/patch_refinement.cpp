@@ -126,21 +126,23 @@ private:
 
 } // namespace
 
-long refine_patches(Mesh& mesh, Eigen::Index first, double h, long max_added, int rounds) {
+PatchRefinementStats refine_patches(Mesh& mesh, const PatchRefinementParams& params) {
+    const Eigen::Index first = params.first;
+    const double h = params.spacing;
     check_indices(mesh, "refine_patches");
     if (first < 0 || first > mesh.triangles.rows())
         throw InvalidInput("refine_patches: first patch triangle " + std::to_string(first) + " is out of range");
     if (!(h > 0.0) || !std::isfinite(h)) throw InvalidInput("refine_patches: edge length must be positive and finite");
-    if (first == mesh.triangles.rows()) return 0;
+    if (first == mesh.triangles.rows()) return {};
     Patch patch(mesh, first);
-    for (int round = 0; round < rounds; ++round) {
-        const bool split = patch.split_long_edges(h, max_added);
+    for (int round = 0; round < params.rounds; ++round) {
+        const bool split = patch.split_long_edges(h, params.max_added);
         patch.flip_edges();
         patch.smooth(3);
         if (!split) break;
     }
     patch.write_to(mesh, first);
-    return patch.added();
+    return {patch.added()};
 }
 
 } // namespace liftremesh

@@ -30,6 +30,8 @@ struct RepairStats {
 //! Holes left behind are for fill_holes(). Never throws on a bad triangle soup; throws
 //! InvalidInput if an index is out of range. An input with no usable triangle gives an empty
 //! mesh (0 points, 0 triangles): the caller decides whether that is a TopologyFailure.
+//! It has no Params nor `const Reference& input`, unlike the other steps: it needs neither the
+//! input nor a setting.
 RepairStats make_manifold(Mesh& mesh);
 
 } // namespace liftremesh
