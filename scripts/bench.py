@@ -177,7 +177,8 @@ def results_page(rows, repeat, gauge_before, gauge_after, load_before=None, load
         "- host: %d cores; gauge %.3f s before the runs, %.3f s after (a fixed single-threaded"
         % (os.cpu_count(), gauge_before, gauge_after),
         "  Python loop, `host_gauge` in `scripts/bench.py`: compare wall times only at similar readings);",
-        "  1-minute load average %s before, %s after (above the core count, other work shared them)"
+        "  1-minute load average %s before, %s after (the bench's own threads count in it: well above"
+        " the core count, other work shared the cores)"
         % (fmt(load_before, ".1f"), fmt(load_after, ".1f")),
         "- each case: the fastest of %d runs, the slowest run's wall time beside it; default" % repeat,
         "  settings but `--vertices`, %d iterations, all cores. The quality figures do not depend on" % ITERATIONS,
