@@ -121,31 +121,9 @@ def cell(value):
     return text.replace("|", "\\|").replace("\n", " ")
 
 
-def accepted(row):
-    """The accepted values in words, from the row's kind, range and open ends."""
-    kind = row.get("kind", "")
-    if kind == "choice":
-        return " or ".join("`%s`" % c for c in row.get("choices", []))
-    if kind == "flag":
-        return "`yes` or `no`"
-    def num(x):
-        return str(int(x)) if float(x).is_integer() else repr(x)
-
-    low, high = row.get("min"), row.get("max")
-    what = "integer" if kind == "integer" else "number"
-    if low is None and high is None:
-        return "any %s" % what if kind else ""
-    if high is None:
-        return "%s %s %s" % (what, ">" if row.get("min_open") else "≥", num(low))
-    if low is None:
-        return "%s %s %s" % (what, "<" if row.get("max_open") else "≤", num(high))
-    return "%s in %s%s, %s%s" % (what, "(" if row.get("min_open") else "[", num(low), num(high),
-                                   ")" if row.get("max_open") else "]")
-
-
 def parameter_table(rows):
-    """Markdown table of parameters(): option, accepted values, default (per mode where they
-    differ), unit, the paper's symbol, meaning."""
+    """Markdown table of parameters(): option, accepted values (the core's words for the row's
+    range), default (per mode where they differ), unit, the paper's symbol, meaning."""
     head = ["option", "accepts", "default", "unit", "symbol", "meaning"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
@@ -153,7 +131,7 @@ def parameter_table(rows):
             else "`--%s`" % row["name"].replace("_", "-")
         meaning = row.get("help", "")
         unit = {"length": "input units", "unit-ball": "unit ball"}.get(row.get("unit", ""), row.get("unit", ""))
-        lines.append("| " + " | ".join(cell(v) for v in (flag, accepted(row), row.get("default", ""), unit,
+        lines.append("| " + " | ".join(cell(v) for v in (flag, row.get("expected", ""), row.get("default", ""), unit,
                                                         row.get("symbol", ""), meaning)) + " |")
     return "\n".join(lines)
 

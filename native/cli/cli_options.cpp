@@ -69,13 +69,9 @@ void apply(RemeshParams& params, const ParameterInfo& row, const std::string& te
         set_parameter(params, row, value);
         return;
     }
-    case ParameterKind::Choice: {
-        const auto word = std::find(row.choices.begin(), row.choices.end(), text);
-        if (word == row.choices.end())
-            throw InvalidInput(row.name + " '" + text + "' is not known: expected " + row.expected());
-        set_parameter(params, row, static_cast<double>(word - row.choices.begin()));
+    case ParameterKind::Choice:
+        set_choice_parameter(params, row, text);
         return;
-    }
     case ParameterKind::Flag: {
         static const char* yes[] = {"yes", "true", "on", "1"};
         static const char* no[] = {"no", "false", "off", "0"};

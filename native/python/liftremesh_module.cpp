@@ -137,6 +137,7 @@ py::list parameter_list() {
         row["step"] = info.kind == ParameterKind::Integer ? py::object(py::int_(static_cast<long long>(info.step)))
                                                           : py::object(py::float_(info.step));
         row["unit"] = info.unit;
+        row["expected"] = info.expected();
         row["metavar"] = info.metavar;
         row["symbol"] = info.symbol;
         row["default"] = info.default_text;
@@ -150,11 +151,7 @@ py::list parameter_list() {
 // typed argument: a TypeError for a value of the wrong type, InvalidInput (ValueError) out of range.
 void set_from_python(RemeshParams& params, const ParameterInfo& row, const py::handle& value) {
     if (row.kind == ParameterKind::Choice) {
-        const auto word = py::cast<std::string>(value);
-        const auto it = std::find(row.choices.begin(), row.choices.end(), word);
-        if (it == row.choices.end())
-            throw InvalidInput(row.name + " '" + word + "' is not known: expected " + row.expected());
-        set_parameter(params, row, static_cast<double>(it - row.choices.begin()));
+        set_choice_parameter(params, row, py::cast<std::string>(value));
         return;
     }
     std::visit(
@@ -165,9 +162,9 @@ void set_from_python(RemeshParams& params, const ParameterInfo& row, const py::h
         row.field);
     // A given value of a parameter that replaces another must be in range: its 0 means "not set".
     if (!row.replaces.empty() && !row.in_range(get_parameter(params, row))) {
-        std::ostringstream s;
-        s << row.name << " = " << get_parameter(params, row) << " is out of range: expected " << row.expected();
-        throw InvalidInput(s.str());
+        std::ostringstream shown;
+        shown << get_parameter(params, row);
+        throw InvalidInput(out_of_range(row, shown.str()));
     }
 }
 
@@ -192,9 +189,7 @@ py::tuple remesh_arrays(const py::object& points_in, const py::object& triangles
     std::vector<std::pair<const ParameterInfo*, py::handle>> given;
     for (const auto& [key, value] : options) {
         const std::string name = py::cast<std::string>(key);
-        const ParameterInfo* row = nullptr;
-        for (const ParameterInfo& r : parameter_table())
-            if (r.name == name) row = &r;
+        const ParameterInfo* row = parameter_named(name);
         if (row == nullptr) throw py::type_error("remesh() got an unexpected keyword argument '" + name + "'");
         if (value.is_none()) continue; // the default of the mode
         if (std::holds_alternative<Mode RemeshParams::*>(row->field)) set_keyword(given_mode, *row, value);
@@ -306,5 +301,6 @@ TopologyFailure (all subclasses of liftremesh.Error).)doc");
           "'choice', 'flag'), min and max (None: unbounded), min_open and max_open (the end excluded), "
           "replaces (the parameter a set value replaces, 0 meaning unset; or None), choices, defaults "
           "({'isotropic': v, 'anisotropic': v}), decimals and step (for spin boxes), unit ('length', "
-          "'unit-ball' or ''), metavar, symbol (the paper's), default (as text), help.");
+          "'unit-ball' or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
+          "default (as text), help.");
 }

@@ -2,6 +2,7 @@
 
 #include "liftremesh/exceptions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -13,9 +14,9 @@ namespace liftremesh {
 const char* to_string(Mode mode) { return mode == Mode::Isotropic ? "isotropic" : "anisotropic"; }
 
 Mode parse_mode(const std::string& text) {
-    if (text == "isotropic") return Mode::Isotropic;
-    if (text == "anisotropic") return Mode::Anisotropic;
-    throw InvalidInput("mode '" + text + "' is not known: expected 'isotropic' or 'anisotropic'");
+    RemeshParams params;
+    set_choice_parameter(params, find_parameter("mode"), text);
+    return params.mode;
 }
 
 RemeshParams RemeshParams::for_mode(Mode mode) {
@@ -175,13 +176,27 @@ const std::vector<ParameterInfo>& parameter_table() {
     return table;
 }
 
+const ParameterInfo* parameter_named(const std::string& name) {
+    for (const ParameterInfo& row : parameter_table())
+        if (row.name == name) return &row;
+    return nullptr;
+}
+
 const ParameterInfo& find_parameter(const std::string& name) {
+    if (const ParameterInfo* row = parameter_named(name)) return *row;
     std::string known;
-    for (const ParameterInfo& row : parameter_table()) {
-        if (row.name == name) return row;
-        known += (known.empty() ? "" : ", ") + row.name;
-    }
+    for (const ParameterInfo& row : parameter_table()) known += (known.empty() ? "" : ", ") + row.name;
     throw InvalidInput("unknown parameter '" + name + "': expected one of " + known);
+}
+
+std::string out_of_range(const ParameterInfo& row, const std::string& value_text) {
+    return row.name + " = " + value_text + " is out of range: expected " + row.expected();
+}
+
+void set_choice_parameter(RemeshParams& params, const ParameterInfo& row, const std::string& word) {
+    const auto it = std::find(row.choices.begin(), row.choices.end(), word);
+    if (it == row.choices.end()) throw InvalidInput(row.name + " '" + word + "' is not known: expected " + row.expected());
+    set_parameter(params, row, static_cast<double>(it - row.choices.begin()));
 }
 
 bool ParameterInfo::in_range(double value) const {
@@ -244,13 +259,10 @@ void set_integer_parameter(RemeshParams& params, const ParameterInfo& row, long 
             using T = std::remove_reference_t<decltype(params.*member)>;
             if constexpr (std::is_same_v<T, int>) {
                 if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
-                    throw InvalidInput(row.name + " = " + std::to_string(value) + " is out of range: expected " +
-                                       row.expected());
+                    throw InvalidInput(out_of_range(row, std::to_string(value)));
                 params.*member = static_cast<int>(value);
             } else if constexpr (std::is_same_v<T, std::uint64_t>) {
-                if (value < 0)
-                    throw InvalidInput(row.name + " = " + std::to_string(value) + " is out of range: expected " +
-                                       row.expected());
+                if (value < 0) throw InvalidInput(out_of_range(row, std::to_string(value)));
                 params.*member = static_cast<std::uint64_t>(value);
             } else {
                 throw std::logic_error("set_integer_parameter: " + row.name + " is not an integer field");
@@ -268,16 +280,15 @@ void RemeshParams::validate() const {
         for (const ParameterInfo& other : parameter_table())
             replaced = replaced || (other.replaces == row.name && get_parameter(*this, other) > 0.0);
         if (replaced || row.in_range(value)) continue;
-        std::ostringstream s;
-        s << row.name << " = ";
+        std::ostringstream shown; // the field's own type: an int as an int
         std::visit(
             [&](auto member) {
-                if constexpr (std::is_arithmetic_v<std::remove_reference_t<decltype(this->*member)>>) s << this->*member;
+                if constexpr (std::is_arithmetic_v<std::remove_reference_t<decltype(this->*member)>>)
+                    shown << this->*member;
             },
             row.field);
-        s << " is out of range: expected " << row.expected();
-        if (!row.replaces.empty()) s << " (or 0 to use " << row.replaces << ")";
-        throw InvalidInput(s.str());
+        const std::string unset = row.replaces.empty() ? "" : " (or 0 to use " + row.replaces + ")";
+        throw InvalidInput(out_of_range(row, shown.str()) + unset);
     }
 }
 

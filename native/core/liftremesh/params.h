@@ -124,8 +124,15 @@ struct ParameterInfo {
 //! Every user-facing parameter, in --help order.
 const std::vector<ParameterInfo>& parameter_table();
 
+//! The row of that name, or nullptr.
+const ParameterInfo* parameter_named(const std::string& name);
+
 //! The row of that name; throws InvalidInput naming it and listing the known names otherwise.
 const ParameterInfo& find_parameter(const std::string& name);
+
+//! The message for a value outside `row`'s range: "NAME = VALUE is out of range: expected ...",
+//! with the value as the caller shows it.
+std::string out_of_range(const ParameterInfo& row, const std::string& value_text);
 
 //! The field of `row` in `params`, as a number (a Choice's index, a Flag's 0 or 1).
 double get_parameter(const RemeshParams& params, const ParameterInfo& row);
@@ -137,5 +144,9 @@ void set_parameter(RemeshParams& params, const ParameterInfo& row, double value)
 //! Sets an Integer field exactly (a seed may exceed 2^53). The value must be >= 0 for an
 //! unsigned field and fit an int for an int field: InvalidInput naming the parameter otherwise.
 void set_integer_parameter(RemeshParams& params, const ParameterInfo& row, long long value);
+
+//! Sets a Choice field from one of its words; InvalidInput ("NAME 'WORD' is not known: expected
+//! ...") for any other word.
+void set_choice_parameter(RemeshParams& params, const ParameterInfo& row, const std::string& word);
 
 } // namespace liftremesh
