@@ -46,25 +46,21 @@ have_lists() {
 }
 
 missing=()
-for p in "${packages[@]}"; do
+for p in "${packages[@]}" "${optional[@]}"; do
   installed "$p" || missing+=("$p")
 done
-missing_optional=()
-for p in "${optional[@]}"; do
-  installed "$p" || missing_optional+=("$p")
-done
 
-# Optional packages the distribution does not have are left out (with a fresh list, not an
-# empty one, which would say every package is absent).
+# Leaves out of `missing` the optional packages apt's lists do not have, naming them in `absent`.
+# Only with lists read (an empty list would say every package is absent).
 absent=()
-if [ ${#missing_optional[@]} -gt 0 ] && have_lists; then
-  wanted=()
-  for p in "${missing_optional[@]}"; do
-    if available "$p"; then wanted+=("$p"); else absent+=("$p"); fi
+drop_absent_optional() {
+  local keep=() p
+  for p in "${missing[@]+"${missing[@]}"}"; do
+    if [[ " ${optional[*]} " == *" $p "* ]] && ! available "$p"; then absent+=("$p"); else keep+=("$p"); fi
   done
-  missing_optional=("${wanted[@]+"${wanted[@]}"}")
-fi
-missing+=("${missing_optional[@]+"${missing_optional[@]}"}")
+  missing=("${keep[@]+"${keep[@]}"}")
+}
+! have_lists || drop_absent_optional
 not_here=""
 [ ${#absent[@]} -eq 0 ] || not_here=" (not in this distribution: ${absent[*]})"
 
@@ -90,15 +86,7 @@ if ! have_lists || ! apt-cache show "${missing[@]}" >/dev/null 2>&1; then
   apt_get update
   updated=1
   # Now that the lists are read, leave out the optional packages this distribution lacks.
-  keep=()
-  for p in "${missing[@]}"; do
-    if [[ " ${optional[*]} " == *" $p "* ]] && ! available "$p"; then
-      absent+=("$p")
-    else
-      keep+=("$p")
-    fi
-  done
-  missing=("${keep[@]+"${keep[@]}"}")
+  drop_absent_optional
   [ ${#absent[@]} -eq 0 ] || echo "install-deps: not in this distribution: ${absent[*]}"
   [ ${#missing[@]} -gt 0 ] || { echo "install-deps: done"; exit 0; }
 fi
