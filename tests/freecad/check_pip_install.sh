@@ -3,8 +3,9 @@
 # copy of this checkout without build/ (scikit-build-core, pyproject.toml); a venv with the system's
 # packages installs it and remeshes with it; then, in a throw-away HOME, that pip installs the wheel
 # where FreeCAD 1.x looks for add-ons' Python packages (<user data>/AdditionalPythonPackages/pyXY,
-# where the Addon Manager puts them; FreeCAD ignores PYTHONPATH), the add-on is copied into the Mod
-# folder as a clone is, and freecadcmd imports LiftRemesh and remeshes a Part shape.
+# where the Addon Manager puts them; FreeCAD ignores PYTHONPATH), the copy is linked into the Mod
+# folder by install-addon.sh (`make install`), and freecadcmd imports LiftRemesh and remeshes a
+# Part shape.
 # Needs python3-scikit-build-core (Debian 13; scripts/test-freecad1.sh runs it there).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -35,11 +36,11 @@ say "built $(basename "$wheel")"
 home="$tmp/home"
 export HOME="$home" XDG_DATA_HOME="$home/.local/share" XDG_CONFIG_HOME="$home/.config"
 unset LIFTREMESH_MODULE_DIR
-data_dir="$("$freecadcmd" -c "import FreeCAD; print('DATA_DIR=' + FreeCAD.getUserAppDataDir())" 2>/dev/null \
-            | sed -n 's/^DATA_DIR=//p' | tail -n 1)"
-[ -n "$data_dir" ] || { echo "check_pip_install: $freecadcmd gave no user data folder" >&2; exit 1; }
-mkdir -p "$data_dir/Mod"
-cp -r "$tmp/src" "$data_dir/Mod/LiftRemesh"
+# The add-on as `make install` puts it in FreeCAD's user Mod folder (a link to the build-free copy).
+FREECADCMD="$freecadcmd" bash "$tmp/src/scripts/install-addon.sh" 2>/dev/null
+link="$(find "$home" -maxdepth 6 -name LiftRemesh -type l | head -n 1)"
+[ -n "$link" ] || { echo "check_pip_install: install-addon.sh made no Mod/LiftRemesh link" >&2; exit 1; }
+data_dir="$(dirname "$(dirname "$link")")"
 site="$data_dir/AdditionalPythonPackages/$("$python" -c 'import sys; print("py%d%d" % sys.version_info[:2])')"
 "$tmp/venv/bin/python" -m pip install --no-index --no-deps --quiet --target "$site" "$wheel"
 
