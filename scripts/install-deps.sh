@@ -79,7 +79,10 @@ else
 fi
 
 echo "install-deps: installing ${missing[*]}"
-apt_get() { "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q "$@" </dev/null; }
+# Another install (a second checkout's build, unattended upgrades) may hold dpkg's lock: wait for it.
+apt_get() {
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q -o DPkg::Lock::Timeout=900 "$@" </dev/null
+}
 updated=0
 # The package lists are empty on a fresh image: update once when apt cannot see the packages.
 if ! have_lists || ! apt-cache show "${missing[@]}" >/dev/null 2>&1; then
