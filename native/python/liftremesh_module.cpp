@@ -5,6 +5,8 @@
 #include "liftremesh/params.h"
 #include "liftremesh/pipeline.h"
 #include "liftremesh/report.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/self_intersection.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
@@ -246,6 +248,47 @@ py::tuple remesh_arrays(const py::object& points_in, const py::object& triangles
     return py::make_tuple(points_out, triangles_out, report);
 }
 
+// The pairs of triangles that pass through each other (spatial/self_intersection), as an (k, 2)
+// int32 array: what a tetrahedral mesher refuses in a surface it is to fill.
+py::array_t<int32_t> crossing_triangles(const py::object& points_in, const py::object& triangles_in) {
+    Mesh mesh;
+    mesh.points = to_points(points_in);
+    mesh.triangles = to_triangles(triangles_in, mesh.points.rows());
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    {
+        py::gil_scoped_release release;
+        pairs = self_intersecting_pairs(mesh, AabbTree(mesh));
+    }
+    py::array_t<int32_t> out({static_cast<py::ssize_t>(pairs.size()), py::ssize_t(2)});
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        out.mutable_at(k, 0) = pairs[k].first;
+        out.mutable_at(k, 1) = pairs[k].second;
+    }
+    return out;
+}
+
+// The closest point of a reference surface to each point, as an (n, 3) float64 array.
+py::array_t<double> closest_points(const py::object& points_in, const py::object& surface_points_in,
+                                   const py::object& surface_triangles_in) {
+    const Points points = to_points(points_in);
+    Mesh surface;
+    surface.points = to_points(surface_points_in);
+    surface.triangles = to_triangles(surface_triangles_in, surface.points.rows());
+    if (surface.triangles.rows() == 0) throw InvalidInput("the surface to project onto has no triangle");
+    py::array_t<double> out({points.rows(), Eigen::Index(3)});
+    double* data = out.mutable_data();
+    {
+        py::gil_scoped_release release;
+        const AabbTree tree(surface);
+        for (Eigen::Index i = 0; i < points.rows(); ++i) {
+            const Eigen::Vector3d q = points.row(i).transpose();
+            const Eigen::Vector3d c = tree.closest(q).point;
+            for (int k = 0; k < 3; ++k) data[3 * i + k] = c[k];
+        }
+    }
+    return out;
+}
+
 } // namespace
 
 PYBIND11_MODULE(liftremesh, m) {
@@ -294,6 +337,20 @@ Returns (points, triangles, report): (N, 3) float64, (M, 3) int32, and a dict wi
 fields as the command-line tool's JSON report. The GIL is released while it runs.
 Raises InvalidInput (a ValueError) for bad arrays or parameters, Cancelled, NumericalFailure,
 TopologyFailure (all subclasses of liftremesh.Error).)doc");
+    m.def("crossing_triangles", &crossing_triangles, py::arg("points"), py::arg("triangles"),
+          R"doc(Pairs of triangles that pass through each other: a side of one through the inside of the
+other (touching and coplanar overlaps are not crossing), as a tetrahedral mesher refuses them.
+
+points: (n, 3) float64 array; triangles: (m, 3) integer array of vertex indices.
+Returns a (k, 2) int32 array of triangle indices (s, t), s < t, sorted; empty when none cross.
+Raises InvalidInput (a ValueError) for bad arrays. The GIL is released while it runs.)doc");
+    m.def("closest_points", &closest_points, py::arg("points"), py::arg("surface_points"),
+          py::arg("surface_triangles"),
+          R"doc(The closest point of a triangle surface to each of `points`.
+
+points: (n, 3) float64; surface_points: (k, 3) float64; surface_triangles: (m, 3) integer, m > 0.
+Returns an (n, 3) float64 array. Raises InvalidInput (a ValueError) for bad arrays. The GIL is
+released while it runs.)doc");
     m.def("defaults", &parameter_defaults, py::arg("mode") = "isotropic",
           "The default value of every parameter of remesh() for a mode, as a dict.");
     m.def("parameters", &parameter_list,
