@@ -17,13 +17,14 @@ packages=(
   python3-scipy     # FreeCAD tests: kd-trees for the exact Hausdorff distance (tests/freecad/mesh_checks.py)
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
-  tetgen            # TetGen: tests fill remeshed surfaces with tetrahedra (tests/native/end_to_end/tetgen_test.cpp)
+  tetgen            # TetGen: fills remeshed surfaces with tetrahedra (FEM solid mesh, fem_solid.py; tetgen_test.cpp)
 )
 
 # Installed where the distribution has them; the tests that need one say they skipped without it.
 optional=(
   calculix-ccx               # CalculiX solver: the FEM hand-off test runs a static shell analysis
                              # (Debian 12 only: Debian 13 has no calculix-ccx)
+  gmsh                       # FreeCAD FEM's own mesher: the FEM solid test compares with its mesh of the B-rep
   python3-scikit-build-core  # `pip install .` without build isolation (Debian 13 only)
   python3-pip                # the pip-installed module check (tests/freecad/check_pip_install.sh)
   python3-venv

@@ -21,7 +21,7 @@ Error = _module.Error
 Cancelled = _module.Cancelled
 InvalidInput = _module.InvalidInput
 
-__all__ = ["remesh_shape", "remesh_mesh", "remesh_objects", "make_fem_shell", "defaults",
+__all__ = ["remesh_shape", "remesh_mesh", "remesh_objects", "make_fem_shell", "make_fem_solid", "defaults",
            "Result", "Error", "Cancelled", "InvalidInput"]
 
 
@@ -42,6 +42,14 @@ def make_fem_shell(doc, mesh_obj, **kwargs):
     from . import fem
 
     return fem.make_fem_shell(doc, mesh_obj, **kwargs)
+
+
+def make_fem_solid(doc, mesh_obj, order=2, **kwargs):
+    """A Fem::FemMeshObject of tetrahedra (tet10; tet4 with order=1) filling a closed mesh object;
+    see fem_solid.py."""
+    from . import fem_solid
+
+    return fem_solid.make_fem_solid(doc, mesh_obj, order=order, **kwargs)
 
 
 # The package is the macro API's facade, as FEM's ObjectsFem is FEM's: with the GUI up it brings in

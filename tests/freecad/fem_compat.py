@@ -17,3 +17,8 @@ def set_force(constraint, newtons):
         constraint.Force = FreeCAD.Units.Quantity("%r N" % float(newtons))
     else:
         constraint.Force = float(newtons)
+
+
+def set_gmsh_shape(mesh_obj, part):
+    """The shape a FEM Gmsh mesh object meshes: its Part property in 0.20, Shape in 1.x."""
+    setattr(mesh_obj, "Shape" if "Shape" in mesh_obj.PropertiesList else "Part", part)
