@@ -6,7 +6,7 @@ import FreeCADGui
 
 
 class LiftRemeshWorkbench(FreeCADGui.Workbench):
-    """Remesh: Part shapes and meshes into well-shaped triangle meshes; FEM shell meshes."""
+    """Remesh: Part shapes and meshes into well-shaped triangle meshes; FEM shell and solid meshes."""
 
     MenuText = "Remesh"
     ToolTip = "LiftRemesh: remesh Part shapes and meshes into well-shaped, feature-preserving triangle meshes"
@@ -25,7 +25,7 @@ class LiftRemeshWorkbench(FreeCADGui.Workbench):
         toolbar and the menu. Without the compiled module the commands say why they cannot run."""
         import FreeCAD
 
-        names = ["LiftRemesh_Remesh", "LiftRemesh_FemShell"]
+        names = ["LiftRemesh_Remesh", "LiftRemesh_FemShell", "LiftRemesh_FemSolid"]
         try:
             from LiftRemesh.gui import commands
 
@@ -64,7 +64,7 @@ class LiftRemeshWorkbench(FreeCADGui.Workbench):
 
     def ContextMenu(self, recipient):
         """The commands also in the 3D view's and the tree's context menus."""
-        self.appendContextMenu("Remesh", ["LiftRemesh_Remesh", "LiftRemesh_FemShell"])
+        self.appendContextMenu("Remesh", ["LiftRemesh_Remesh", "LiftRemesh_FemShell", "LiftRemesh_FemSolid"])
 
     def Activated(self):
         pass

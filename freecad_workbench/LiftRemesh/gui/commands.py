@@ -3,6 +3,8 @@ when it is activated):
 
   LiftRemesh_Remesh    remesh the selected Part shapes and meshes (task panel)
   LiftRemesh_FemShell  FEM mesh of linear triangles (shell elements) from the selected meshes
+  LiftRemesh_FemSolid  FEM mesh of tet10 elements filling the selected closed meshes
+                       (fem_solid_command.py)
 """
 import FreeCAD
 import FreeCADGui
@@ -10,10 +12,11 @@ import FreeCADGui
 from .. import document
 from .. import meshing
 from . import common
+from . import fem_solid_command  # registers its command, LiftRemesh_FemSolid
 
 REMESH = "LiftRemesh_Remesh"
 FEM_SHELL = "LiftRemesh_FemShell"
-NAMES = (REMESH, FEM_SHELL)
+NAMES = (REMESH, FEM_SHELL, fem_solid_command.FEM_SOLID)
 
 
 def no_task_dialog():
