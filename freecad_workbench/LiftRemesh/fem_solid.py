@@ -144,13 +144,15 @@ def solid_mesh(mesh, shape=None, order=2, quality=QUALITY, progress=None, label=
         vectors = on_surface(vectors, surface)
         problems = surface_problems(_array(vectors), triangles)
         if problems:
-            raise SurfaceRefused("%s, put on its source, cannot be filled: it is %s" % (label, "; ".join(problems)))
+            raise SurfaceRefused("%s, put on its source, cannot be filled: it is %s"
+                                 % (label, "; ".join(problems)))
     if shape is not None:
         _report_stage(progress, "snap")
         vectors, snapped, on_creases = onto_shape(vectors, triangle_list, shape)
         problems = surface_problems(_array(vectors), triangles)
         if problems:
-            raise SurfaceRefused("%s, put on its shape, cannot be filled: it is %s" % (label, "; ".join(problems)))
+            raise SurfaceRefused("%s, put on its shape, cannot be filled: it is %s"
+                                 % (label, "; ".join(problems)))
     points = _array(vectors)
     nodes, tets = tetgen.tetrahedralize(points, triangles, quality, progress)
     quality_figures = tet_mesh.element_quality(nodes, tets)
@@ -250,11 +252,12 @@ def _middles_onto_shape(nodes, elements, triangles, surface_count, shape, on_cre
 # ----- faces to put constraints on, for a mesh without a shape --------------------------------------
 
 def faceted_solid(points, triangles):
-    """The closed surface (points: FreeCAD vectors, triangles: index triples) as a Part solid whose faces are its triangles, adjacent coplanar ones merged
-    (Part's "Refine shape", ShapeUpgrade_UnifySameDomain): a planar region bounded by creases is
-    one face, as on the CAD part; a curved region (a bore, a fillet) stays a face per triangle.
-    Its vertices are the points, in double precision, so nodes made from them lie on its faces exactly (a middle
-    node on a planar face too): FEM constraints on these faces find their nodes.
+    """The closed surface (points: FreeCAD vectors, triangles: index triples) as a Part solid whose
+    faces are its triangles, adjacent coplanar ones merged (Part's "Refine shape",
+    ShapeUpgrade_UnifySameDomain): a planar region bounded by creases is one face, as on the CAD
+    part; a curved region (a bore, a fillet) stays a face per triangle. Its vertices are the
+    points, in double precision, so nodes made from them lie on its faces exactly (a middle node
+    on a planar face too): FEM constraints on these faces find their nodes.
     MesherFailed when the triangles do not close into a valid solid."""
     import Part
 
@@ -290,16 +293,20 @@ def make_fem_solid(doc, mesh_obj, order=2, quality=QUALITY, name=None, shape=Non
     if doc is None:
         raise ValueError("no document")
     mesh = fem.mesh_of(mesh_obj)
+    shape_obj = None
     if shape is None:
-        shape = fem.source_shape(mesh_obj)
+        shape, shape_obj = fem.source_shape(mesh_obj), shape_object(mesh_obj)
     result = solid_mesh(mesh, shape, order, quality, progress, mesh_obj.Label, faces, source_mesh(mesh_obj))
-    return add_fem_solid(doc, mesh_obj, result, name, analysis)
+    return add_fem_solid(doc, mesh_obj, result, name, analysis, shape_obj)
 
 
-def add_fem_solid(doc, mesh_obj, result, name=None, analysis=None):
+def add_fem_solid(doc, mesh_obj, result, name=None, analysis=None, shape_obj=None):
     """Puts a SolidMesh made from mesh_obj into the document (make_fem_solid's last step, which the
     GUI runs in the main thread after the worker made `result`). With result.faces, a Part::Feature
-    holding them is added too: name mesh_obj.Name + "_Faces", label mesh_obj.Label + "_Faces"."""
+    holding them is added too: name mesh_obj.Name + "_Faces", label mesh_obj.Label + "_Faces".
+    The FEM mesh object's property Part links that, or `shape_obj` (the object whose shape the
+    nodes were put on): FEM reads a mesh's shape from it (femmesh/meshsetsgetter.py, as for its
+    own Gmsh mesh objects), e.g. to tell the solids of several materials apart."""
     if analysis is None:
         analysis = active_analysis(doc)
     fem_mesh = result.fem_mesh()
@@ -309,11 +316,21 @@ def add_fem_solid(doc, mesh_obj, result, name=None, analysis=None):
             faces_obj = doc.addObject("Part::Feature", faces_name(mesh_obj))
             faces_obj.Shape = result.faces
             faces_obj.Label = mesh_obj.Label + "_Faces"
+            shape_obj = faces_obj
         fem_obj = doc.addObject("Fem::FemMeshObject", name or mesh_obj.Name + "_Solid")
+        if shape_obj is not None:
+            fem_obj.addProperty("App::PropertyLink", "Part", "FEM Mesh", "the Part shape the nodes lie on, "
+                                "whose faces the constraints reference")
+            fem_obj.Part = shape_obj
         fem.fill_fem_mesh_object(fem_obj, fem_mesh, mesh_obj.Label + "_Solid")
         if analysis is not None:
             analysis.addObject(fem_obj)
     return fem_obj
+
+
+def shape_object(mesh_obj):
+    """mesh_obj.Source when it holds the shape the nodes go on (fem.source_shape), else None."""
+    return mesh_obj.Source if fem.source_shape(mesh_obj) is not None else None
 
 
 def source_mesh(mesh_obj):

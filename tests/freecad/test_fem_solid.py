@@ -170,6 +170,7 @@ class BracketSolidTest(unittest.TestCase):
     def test_all_elements_are_tet10_and_the_boundary_is_the_remeshed_surface(self):
         fem_mesh = self.fem_obj.FemMesh
         self.assertEqual((self.fem_obj.Name, self.fem_obj.Label), ("Remesh_Solid", "Remesh_Solid"))
+        self.assertEqual(self.fem_obj.Part, self.part)  # FEM's link to the shape (meshsetsgetter.py)
         self.assertGreater(fem_mesh.VolumeCount, self.mesh.CountFacets)
         self.assertEqual(fem_mesh.TetraCount, fem_mesh.VolumeCount)
         self.assertEqual((fem_mesh.FaceCount, fem_mesh.EdgeCount), (0, 0))
@@ -286,6 +287,7 @@ class StlOnlyTest(unittest.TestCase):
     def test_the_faceted_solid_has_the_planar_regions_as_faces(self):
         self.assertIsNotNone(self.faces_obj)
         self.assertEqual(self.faces_obj.Label, self.remeshed.Label + "_Faces")
+        self.assertEqual(self.fem_obj.Part, self.faces_obj)
         solid = self.faces_obj.Shape
         self.assertEqual((solid.ShapeType, solid.isValid()), ("Solid", True))
         self.assertLess(len(solid.Faces), self.remeshed.Mesh.CountFacets)

@@ -138,7 +138,8 @@ class CommandFemSolid:
             return
         try:
             with document.document_change(doc, fem_solid.TRANSACTION):
-                created = [fem_solid.add_fem_solid(doc, obj, result) for obj, result in zip(meshes, solid_job.results)]
+                created = [fem_solid.add_fem_solid(doc, obj, result, shape_obj=fem_solid.shape_object(obj))
+                           for obj, result in zip(meshes, solid_job.results)]
                 for obj in meshes:  # the FEM mesh fills it; undoing shows it again
                     if obj.ViewObject is not None:
                         obj.ViewObject.hide()
