@@ -144,6 +144,8 @@ py::list parameter_list() {
         row["symbol"] = info.symbol;
         row["default"] = info.default_text;
         row["help"] = info.help;
+        row["label"] = info.label;
+        row["gui_help"] = info.gui_help;
         rows.append(row);
     }
     return rows;
@@ -359,5 +361,6 @@ released while it runs.)doc");
           "replaces (the parameter a set value replaces, 0 meaning unset; or None), choices, defaults "
           "({'isotropic': v, 'anisotropic': v}), decimals and step (for spin boxes), unit ('length', "
           "'unit-ball' or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
-          "default (as text), help.");
+          "default (as text), help, label (the name a GUI shows) and gui_help (what it does to the mesh, in "
+          "a CAD user's words, lengths in mm).");
 }

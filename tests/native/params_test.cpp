@@ -176,6 +176,18 @@ TEST(Params, TableDefaultsAreTheStructDefaults) {
     EXPECT_EQ(aniso.delta, 0.0);
 }
 
+// The GUI's words (issue 34): every row has the name a panel shows and a description in a CAD
+// user's words, without the method's terms or the command line's options; a length says mm.
+TEST(Params, EveryRowHasPlainWordsForTheGui) {
+    for (const ParameterInfo& p : parameter_table()) {
+        EXPECT_FALSE(p.label.empty()) << p.name;
+        EXPECT_FALSE(p.gui_help.empty()) << p.name;
+        for (const char* jargon : {"unit-ball", "rho^", "L-BFGS", "sites", "--", "input units"})
+            EXPECT_EQ(p.gui_help.find(jargon), std::string::npos) << p.name << ": " << jargon;
+        if (p.unit == "length") EXPECT_NE(p.gui_help.find("mm"), std::string::npos) << p.name;
+    }
+}
+
 TEST(Params, ValidateNamesTheFieldAndTheRange) {
     RemeshParams p;
     p.delta = 3.0;

@@ -102,6 +102,11 @@ struct Row {
         info.help = std::move(help);
         return *this;
     }
+    Row& words(std::string label, std::string gui_help) {
+        info.label = std::move(label);
+        info.gui_help = std::move(gui_help);
+        return *this;
+    }
     std::optional<double> anisotropic_;
 };
 
@@ -130,48 +135,81 @@ const std::vector<ParameterInfo>& parameter_table() {
         Row("vertices", K::Integer, &P::target_vertices)
             .range(4, kMaxVertices)
             .spin(0, 500)
-            .text("N", "", "target number of output vertices (sites), 4 to 20000000"),
+            .text("N", "", "target number of output vertices (sites), 4 to 20000000")
+            .words("Vertex count",
+                   "How many vertices the new mesh has, 4 to 20000000: more vertices give smaller triangles."),
         Row("edge_length", K::Real, &P::target_edge_length)
             .range(0, kInf, true)
             .replaces("vertices")
             .spin(3, 0.1)
             .unit("length")
-            .text("H", "h", "target edge length in input units; replaces --vertices"),
+            .text("H", "h", "target edge length in input units; replaces --vertices")
+            .words("Edge length",
+                   "The length the triangle edges aim at, in mm (used instead of the vertex count): smaller gives "
+                   "more, smaller triangles."),
         Row("mode", K::Choice, &P::mode)
             .choices({"isotropic", "anisotropic"})
-            .text("MODE", "", "isotropic (with local density) or anisotropic; sets nu and delta defaults"),
+            .text("MODE", "", "isotropic (with local density) or anisotropic; sets nu and delta defaults")
+            .words("Mode",
+                   "Isotropic: triangles close to equilateral, smaller where the surface bends. Anisotropic: "
+                   "triangles stretched along the direction in which the surface bends least, fewer for the same "
+                   "accuracy. Choosing a mode sets Density and Lifting to its defaults."),
         Row("sigma", K::Real, &P::sigma)
             .range(1, 100)
             .spin(2, 0.5)
-            .text("S", "sigma", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners"),
+            .text("S", "sigma", "feature sensitivity (>= 1): pulls vertices onto sharp edges and corners")
+            .words("Sensitivity",
+                   "How strongly vertices are pulled onto sharp edges and corners, 1 to 100: higher keeps edges and "
+                   "corners sharper, 1 leaves them rounded."),
         Row("delta", K::Real, &P::delta)
             .range(0, 2)
             .anisotropic(0.0) // Section 6.1
             .spin(3, 0.05)
-            .text("D", "delta", "exponent of the curvature density rho^delta"),
+            .text("D", "delta", "exponent of the curvature density rho^delta")
+            .words("Density",
+                   "How much smaller the triangles get where the surface bends, 0 to 2: 0 gives the same size "
+                   "everywhere, higher gives smaller triangles on fillets and holes."),
         Row("nu", K::Real, &P::nu)
             .range(0, 1)
             .anisotropic(0.05) // Section 6.1
             .spin(4, 0.005)
             .unit("unit-ball")
-            .text("NU", "nu", "normal lifting scale, in unit-ball units"),
+            .text("NU", "nu", "normal lifting scale, in unit-ball units")
+            .words("Lifting",
+                   "How much the direction of the surface steers the vertices, 0 to 1 (relative to the part's size):"
+                   " higher puts vertices closer to sharp edges and follows curved areas more closely, 0 looks at "
+                   "positions only."),
         Row("eta", K::Real, &P::eta)
             .range(0, 0.5, true)
             .spin(3, 0.005)
             .unit("unit-ball")
-            .text("ETA", "eta", "radius of the neighbourhood for vertex normals, in unit-ball units"),
+            .text("ETA", "eta", "radius of the neighbourhood for vertex normals, in unit-ball units")
+            .words("Normal radius",
+                   "How far around each point the direction of the surface is averaged, as a fraction of the part's "
+                   "size (above 0, at most 0.5): larger smooths out small bumps and noise, smaller keeps small "
+                   "details."),
         Row("iterations", K::Integer, &P::iterations)
             .range(1, 100000)
             .spin(0, 10)
-            .text("K", "", "L-BFGS iterations (last 10%, at least 10, with sigma)"),
+            .text("K", "", "L-BFGS iterations (last 10%, at least 10, with sigma)")
+            .words("Iterations",
+                   "How many steps move the vertices to better places, 1 to 100000: more give better-shaped "
+                   "triangles and take longer."),
         Row("seed", K::Integer, &P::seed)
             .range(0, kInf)
-            .text("R", "", "seed of the random initial sampling"),
+            .text("R", "", "seed of the random initial sampling")
+            .words("Seed",
+                   "The number that chooses the random starting vertices: the same seed and settings give the same "
+                   "mesh."),
         Row("threads", K::Integer, &P::threads)
             .range(0, 1024)
-            .text("T", "", "worker threads (0 = all cores); the result does not depend on it"),
+            .text("T", "", "worker threads (0 = all cores); the result does not depend on it")
+            .words("Threads",
+                   "How many processor cores work on it (0 = all); the mesh is the same whatever the number."),
         Row("fill_holes", K::Flag, &P::fill_holes)
-            .text("yes|no", "", "fill the holes of the result that the input does not have"),
+            .text("yes|no", "", "fill the holes of the result that the input does not have")
+            .words("Fill new holes",
+                   "Close holes that appear in the new mesh where the source has none."),
     });
     return table;
 }

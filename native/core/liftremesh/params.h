@@ -110,7 +110,11 @@ struct ParameterInfo {
     std::string metavar; //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
     std::string symbol;  //!< the paper's symbol, or "" if none
     std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")
-    std::string help;    //!< one-line meaning
+    std::string help;    //!< one-line meaning (CLI --help, Python; may use the method's words)
+    std::string label;   //!< the name a GUI shows ("Edge length"), as the FreeCAD task panel does
+    //! What the setting does to the mesh, in words a CAD user knows (lengths in mm, no method
+    //! terms): the FreeCAD add-on's tooltips and property descriptions.
+    std::string gui_help;
 
     //! The default of a mode, as a number (see isotropic_default).
     double default_for(Mode mode) const { return mode == Mode::Anisotropic ? anisotropic_default : isotropic_default; }
