@@ -12,18 +12,43 @@ from . import parameters
 
 FEATURE_TYPE = "Mesh::FeaturePython"
 
-# Read-only properties that show the last result's quality: name -> (type, path in report, help)
+def _relative(report):
+    return report.get("hausdorff_relative")
+
+
+def _scaled(report, factor):
+    """hausdorff_relative * factor (a number, or the report's bbox_diagonal), None when missing."""
+    relative = report.get("hausdorff_relative")
+    if isinstance(factor, str):
+        factor = report.get(factor)
+    return None if relative is None or factor is None else relative * factor
+
+
+# Read-only properties that show the last result's quality: name -> (type, value from the report
+# (None when the report lacks it), help, editor mode: 1 read-only, 2 hidden). HausdorffRelative and
+# Report stay for macros and in the file, hidden: the editor shows a float with 2 decimals (0.0028
+# as 0.00) and a many-line JSON text as hundreds of rows.
 QUALITY_PROPERTIES = {
-    "KappaMin": ("App::PropertyFloat", ("output", "kappa_min"), "smallest triangle aspect ratio (Eq. 26, 1 = equilateral)"),
-    "KappaMean": ("App::PropertyFloat", ("output", "kappa_mean"), "mean triangle aspect ratio (Eq. 26)"),
-    "MinAngle": ("App::PropertyFloat", ("output", "min_angle_deg"), "smallest triangle angle (degrees)"),
-    "HausdorffRelative": ("App::PropertyFloat", ("hausdorff_relative",),
-                          "two-sided Hausdorff distance to the source / its bounding-box diagonal"),
-    "SelfIntersections": ("App::PropertyInteger", ("output", "self_intersections"),
+    "KappaMin": ("App::PropertyFloat", lambda r: _lookup(r, ("output", "kappa_min")),
+                 "how well shaped the worst triangle is: 1 for an equilateral triangle, near 0 for a sliver", 1),
+    "KappaMean": ("App::PropertyFloat", lambda r: _lookup(r, ("output", "kappa_mean")),
+                  "how well shaped the triangles are on average: 1 for equilateral triangles", 1),
+    "MinAngle": ("App::PropertyFloat", lambda r: _lookup(r, ("output", "min_angle_deg")),
+                 "smallest angle of any triangle (degrees)", 1),
+    "HausdorffDistance": ("App::PropertyLength", lambda r: _scaled(r, "bbox_diagonal"),
+                          "largest distance between the new mesh and the source (mm)", 1),
+    "HausdorffPercent": ("App::PropertyFloat", lambda r: _scaled(r, 100.0),
+                         "largest distance between the new mesh and the source, in percent of the "
+                         "source's bounding-box diagonal", 1),
+    "HausdorffRelative": ("App::PropertyFloat", _relative,
+                          "two-sided Hausdorff distance to the source / its bounding-box diagonal", 2),
+    "SelfIntersections": ("App::PropertyInteger", lambda r: _lookup(r, ("output", "self_intersections")),
                           "pairs of triangles passing through each other: 0 for a surface to fill with "
-                          "tetrahedra (-1: not counted, a result saved before the count)"),
-    "Report": ("App::PropertyString", (), "the full quality report (JSON, as the command-line tool writes it)"),
+                          "tetrahedra (-1: not counted, a result saved before the count)", 1),
+    "Report": ("App::PropertyString", None, "the full quality report (JSON, as the command-line tool writes it)", 2),
 }
+SIZE_BY = "SizeBy"  # which of the two target sizes is used (an enumeration of their labels)
+_adding = set()  # id() of the features whose SizeBy is being added: its first values convert nothing
 
 
 # The GUI gives a new feature its view provider through this one hook, set when LiftRemesh.gui is
@@ -42,6 +67,19 @@ def attach_view_provider(obj):
     """Attaches the GUI's view provider to a new feature, when the GUI is up and has set the hook."""
     if FreeCAD.GuiUp and _view_provider_hook is not None and getattr(obj, "ViewObject", None) is not None:
         _view_provider_hook(obj.ViewObject)
+
+
+# In the GUI a recompute of a feature that already has a mesh (after a property edit) runs in the
+# background with progress and Cancel (gui/recompute.py sets this hook: hook(obj, params)); the
+# feature keeps its mesh until the new one is there. Without the GUI, and for a new feature, the
+# recompute computes the mesh before it returns.
+_recompute_hook = None
+
+
+def set_recompute_hook(hook):
+    """Sets the callable hook(feature, params) that recomputes a feature in the background."""
+    global _recompute_hook
+    _recompute_hook = hook
 
 
 def _store(obj, name, value):
@@ -79,6 +117,11 @@ class StatelessProxy:
         return None
 
 
+def size_choices():
+    """The SizeBy choices: the labels of the two target sizes ("Vertex count", "Edge length")."""
+    return [parameters.label(name) for name in parameters.size_names()]
+
+
 class RemeshFeature(StatelessProxy):
     """Proxy of a remeshed mesh: Source (link to a Part shape or a mesh) + parameter properties.
     Its `execute` tessellates the source if it is a shape, remeshes and sets Mesh."""
@@ -91,7 +134,8 @@ class RemeshFeature(StatelessProxy):
     def add_properties(obj, mode="isotropic"):
         """Adds the properties `obj` lacks, with the defaults of `mode`; a parameter stored with
         another property type (an earlier version's App::PropertyInteger or PropertyFloat for a
-        constrained one) gets the table's type, keeping its value when it is in range."""
+        constrained one) gets the table's type, keeping its value when it is in range. Sets the
+        descriptions and editor modes (not all of them are saved)."""
         defaults = parameters.defaults(mode)
         if "Source" not in obj.PropertiesList:
             obj.addProperty("App::PropertyLink", "Source", "Base", "the Part shape or mesh that is remeshed")
@@ -99,24 +143,40 @@ class RemeshFeature(StatelessProxy):
             value = defaults[name]
             if prop in obj.PropertiesList:
                 if obj.getTypeIdOfProperty(prop) == kind:
+                    _describe(obj, prop, parameters.gui_help(name))
                     continue
                 value = _stored_value(obj, name, defaults[name])
                 obj.removeProperty(prop)
             row = parameters.row(name)
-            obj.addProperty(kind, prop, group, row["help"])
+            obj.addProperty(kind, prop, group, parameters.gui_help(name))
             if kind == "App::PropertyEnumeration":
                 setattr(obj, prop, list(row["choices"]))
             _store(obj, name, value)
-        for prop, (kind, _, doc) in QUALITY_PROPERTIES.items():
+        if SIZE_BY not in obj.PropertiesList:
+            # "EdgeLength 0 mm" meant "not set": the choice is said instead (as FreeCAD's Pad says
+            # Type = Length / Up to face), and only the size in use is shown.
+            by_length = getattr(obj, parameters.properties()[parameters.size_names()[1]][0]).Value > 0
+            obj.addProperty("App::PropertyEnumeration", SIZE_BY, "Size",
+                            "which target size sets how fine the mesh is: the vertex count, or the edge length (mm)")
+            _adding.add(id(obj))  # the stored sizes stay as they are (see onChanged)
+            try:
+                setattr(obj, SIZE_BY, size_choices())
+                setattr(obj, SIZE_BY, size_choices()[1 if by_length else 0])
+            finally:
+                _adding.discard(id(obj))
+        _show_size(obj)
+        for prop, (kind, _, doc, mode_) in QUALITY_PROPERTIES.items():
             if prop not in obj.PropertiesList:
                 obj.addProperty(kind, prop, "Quality", doc)
-                obj.setEditorMode(prop, 1)  # read-only
                 obj.setPropertyStatus(prop, "Output")  # setting it asks for no recompute
+            _describe(obj, prop, doc)
+            obj.setEditorMode(prop, mode_)
 
     def onDocumentRestored(self, obj):
         # A document saved by an earlier version lacks the properties added since: they are added
         # and, for a quality figure, read from the stored report (-1 where it lacks the figure too).
-        # The constraints of the parameters' properties are not saved: they are set again.
+        # The constraints of the parameters' properties and the editor modes are not saved: they
+        # are set again.
         missing = [prop for prop in QUALITY_PROPERTIES if prop not in obj.PropertiesList]
         touched = "Touched" in obj.State
         self.add_properties(obj, obj.Mode if "Mode" in obj.PropertiesList else "isotropic")
@@ -130,14 +190,20 @@ class RemeshFeature(StatelessProxy):
         except ValueError:
             report = {}
         for prop in missing:
-            kind, path, _ = QUALITY_PROPERTIES[prop]
-            if path:
-                _set_quality(obj, prop, kind, _lookup(report, path), missing=-1)
+            kind, value_of, _, _ = QUALITY_PROPERTIES[prop]
+            if value_of is not None:
+                _set_quality(obj, prop, kind, value_of(report), missing=-1)
 
     def onChanged(self, obj, prop):
-        # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.
+        if "Restore" in obj.State:
+            return
         properties = parameters.properties()
-        if prop != properties[parameters.MODE][0] or "Restore" in obj.State:
+        if prop == SIZE_BY:
+            if id(obj) not in _adding:
+                _size_by_changed(obj)
+            return
+        # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.
+        if prop != properties[parameters.MODE][0]:
             return
         defaults = parameters.defaults(getattr(obj, prop))
         for name in parameters.mode_dependent():
@@ -147,12 +213,57 @@ class RemeshFeature(StatelessProxy):
     def execute(self, obj):
         if obj.Source is None:
             raise ValueError("%s has no source to remesh" % obj.Label)
-        result = meshing.remesh_source(obj.Source, **params_of(obj))
+        params = params_of(obj)
+        if _recompute_hook is not None and FreeCAD.GuiUp and obj.Mesh.CountFacets:
+            _recompute_hook(obj, params)  # the mesh follows when the background job ends
+            return
+        result = meshing.remesh_source(obj.Source, **params)
         apply_result(obj, result)
 
 
+def _describe(obj, prop, text):
+    """Sets a property's description (a document saved earlier keeps the words of its version)."""
+    if hasattr(obj, "setDocumentationOfProperty") and obj.getDocumentationOfProperty(prop) != text:
+        obj.setDocumentationOfProperty(prop, text)
+
+
+def _size_by_length(obj):
+    """True when the feature's target size is the edge length."""
+    return SIZE_BY in obj.PropertiesList and getattr(obj, SIZE_BY) == size_choices()[1]
+
+
+def _show_size(obj):
+    """Shows the size property SizeBy chooses and hides the other."""
+    by_length = _size_by_length(obj)
+    for name, shown in zip(parameters.size_names(), (not by_length, by_length)):
+        prop = parameters.properties()[name][0]
+        if prop in obj.PropertiesList:
+            obj.setEditorMode(prop, 0 if shown else 2)
+
+
+def _size_by_changed(obj):
+    """SizeBy switched: the size now used starts from the equivalent of the other on the source's
+    area (as the panel's radio buttons do), within its range; the other one is hidden."""
+    replaced, replacing = parameters.size_names()
+    vertices_prop, length_prop = (parameters.properties()[n][0] for n in (replaced, replacing))
+    if vertices_prop not in obj.PropertiesList or length_prop not in obj.PropertiesList:
+        return
+    area = meshing.source_area(getattr(obj, "Source", None))
+    if _size_by_length(obj):
+        if not getattr(obj, length_prop).Value > 0:
+            length = parameters.edge_length_for(area, getattr(obj, vertices_prop))
+            _store(obj, replacing, parameters.clamp(replacing, length) if length else 1.0)
+    elif getattr(obj, length_prop).Value > 0:
+        vertices = parameters.vertices_for(area, getattr(obj, length_prop).Value)
+        if vertices:
+            _store(obj, replaced, parameters.clamp(replaced, vertices))
+        _store(obj, replacing, None)
+    _show_size(obj)
+
+
 def params_of(obj):
-    """The parameter dict stored in a feature's properties."""
+    """The parameter dict stored in a feature's properties (SizeBy chooses the size in use; a
+    feature without it uses the edge length when that is set)."""
     values = {}
     for name, (prop, kind, _) in parameters.properties().items():
         value = getattr(obj, prop)
@@ -160,7 +271,8 @@ def params_of(obj):
             value = value.Value
         values[name] = value
     replaced, replacing = parameters.size_names()
-    if values[replacing] > 0:
+    by_length = _size_by_length(obj) if SIZE_BY in obj.PropertiesList else values[replacing] > 0
+    if by_length:
         values[replaced] = None
     else:
         values[replacing] = None
@@ -188,16 +300,21 @@ def set_params(obj, params):
     for name in parameters.properties():
         if name != parameters.MODE:
             _store(obj, name, values[name])
+    if SIZE_BY in obj.PropertiesList:
+        by_length = values[parameters.size_names()[1]] is not None
+        if getattr(obj, SIZE_BY) != size_choices()[1 if by_length else 0]:
+            setattr(obj, SIZE_BY, size_choices()[1 if by_length else 0])
+        _show_size(obj)
 
 
 def apply_result(obj, result):
     """Sets a feature's mesh and quality properties from a Result."""
     obj.Mesh = result.mesh
-    for prop, (kind, path, _) in QUALITY_PROPERTIES.items():
+    for prop, (kind, value_of, _, _) in QUALITY_PROPERTIES.items():
         if prop == "Report":
             obj.Report = json.dumps(result.report, indent=2)
         else:
-            _set_quality(obj, prop, kind, _lookup(result.report, path), missing=0)
+            _set_quality(obj, prop, kind, value_of(result.report), missing=0)
 
 
 def _lookup(report, path):
@@ -213,7 +330,10 @@ def _lookup(report, path):
 def _set_quality(obj, prop, kind, value, missing):
     """Sets a quality property to a report figure (`missing` when the report has none)."""
     number = int if kind == "App::PropertyInteger" else float
-    setattr(obj, prop, number(missing if value is None else value))
+    value = number(missing if value is None else value)
+    if kind == "App::PropertyLength" and value < 0:
+        value = 0.0  # a length cannot say "missing" by -1
+    setattr(obj, prop, value)
 
 
 def create_feature(doc, source, params, result=None):

@@ -288,7 +288,7 @@ def check_fem_mesh(fem_mesh):
 def make_fem_shell(doc, mesh_obj, name=None, shape=None):
     """Adds a Fem::FemMeshObject of linear triangles made from `mesh_obj` (any object with a Mesh
     property: Mesh::Feature, a LiftRemesh remesh feature) to `doc` and returns it. Name: `name` or
-    mesh_obj.Name + "_FEM"; Label: mesh_obj.Label + "_FEM". Nodes are put on `shape`, or when it is
+    mesh_obj.Name + "_FEM"; Label: shell_mesh_label(mesh_obj). Nodes are put on `shape`, or when it is
     None on the Shape of the object mesh_obj's Source property links (a remesh feature's source),
     when there is one (see the module doc).
     Everything is computed before the document changes, and the change is one transaction
@@ -308,8 +308,45 @@ def make_fem_shell(doc, mesh_obj, name=None, shape=None):
 
     with document.document_change(doc, TRANSACTION):
         fem_obj = doc.addObject("Fem::FemMeshObject", name or mesh_obj.Name + "_FEM")
-        fill_fem_mesh_object(fem_obj, fem_mesh, mesh_obj.Label + "_FEM")
+        fill_fem_mesh_object(fem_obj, fem_mesh, shell_mesh_label(mesh_obj))
     return fem_obj
+
+
+def shell_mesh_label(mesh_obj):
+    """"Plate_ShellMesh": named after the part, as FEM names its meshes (FEMMeshGmsh): the source's
+    label for a remesh feature, else the mesh's own."""
+    source = getattr(mesh_obj, "Source", None)
+    return "%s_ShellMesh" % (source.Label if source is not None else mesh_obj.Label)
+
+
+def add_to_analysis(analysis, fem_obj, thickness=None):
+    """Puts a shell FEM mesh into a FEM analysis, with a shell thickness object
+    (ObjectsFem.makeElementGeometry2D; `thickness` in mm, FEM's default when None) unless the
+    analysis has one. Returns the objects added to it. No transaction of its own."""
+    import ObjectsFem
+
+    added = [fem_obj]
+    analysis.addObject(fem_obj)
+    if not any(_is_element_geometry_2d(obj) for obj in analysis.Group):
+        geometry = (ObjectsFem.makeElementGeometry2D(fem_obj.Document) if thickness is None
+                    else ObjectsFem.makeElementGeometry2D(fem_obj.Document, thickness))
+        analysis.addObject(geometry)
+        added.append(geometry)
+    return added
+
+
+def plate_thickness(shape):
+    """The thickness of a plate-like solid, 2 * volume / area (its two large faces carry nearly all
+    the area), to two significant digits; None for a shape without volume."""
+    if shape is None or not shape.Solids or shape.Area <= 0 or shape.Volume <= 0:
+        return None
+    return float("%.2g" % (2.0 * shape.Volume / shape.Area))
+
+
+def _is_element_geometry_2d(obj):
+    """True for FEM's shell thickness object (Fem::FeaturePython of type Fem::ElementGeometry2D)."""
+    proxy = getattr(obj, "Proxy", None)
+    return getattr(proxy, "Type", None) == "Fem::ElementGeometry2D"
 
 
 def fill_fem_mesh_object(fem_obj, fem_mesh, label):

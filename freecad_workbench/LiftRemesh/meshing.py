@@ -57,6 +57,19 @@ def source_kind(obj):
     return None
 
 
+def source_area(obj):
+    """The area of a source (shape or mesh) in mm^2, 0 when it cannot be had: only a hint (the
+    starting value of one target size from the other)."""
+    try:
+        if source_kind(obj) == "mesh":
+            return obj.Mesh.Area
+        if source_kind(obj) == "shape":
+            return shape_of(obj).Area
+    except Exception:  # a hint: a source without a usable shape has none
+        pass
+    return 0.0
+
+
 def shape_of(obj):
     """The shape of a document object with its global placement (Part features, PartDesign
     bodies, links), or ValueError naming the object."""

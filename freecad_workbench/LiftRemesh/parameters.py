@@ -8,6 +8,7 @@ names. `properties()` maps each name to the property a parametric feature stores
 `editor_range()` gives the bounds its property and its spin box accept.
 """
 import functools
+import math
 
 from . import native
 
@@ -18,11 +19,17 @@ TESSELLATION = (
     {"name": "linear_deflection", "kind": "real", "min": 0.0, "max": None, "min_open": True, "max_open": False,
      "replaces": None, "choices": [], "defaults": {"isotropic": 0.1, "anisotropic": 0.1}, "decimals": 3,
      "step": 0.01, "unit": "length",
-     "help": "tessellation of Part shapes: largest distance of the STL from the shape (mm)"},
+     "help": "tessellation of Part shapes: largest distance of the STL from the shape (mm)",
+     "label": "Deviation",
+     "gui_help": "Part shapes are first cut into triangles as the STL export does: the largest distance, "
+                 "in mm, of those triangles from the shape. Smaller follows curved faces more closely."},
     {"name": "angular_deflection", "kind": "real", "min": 0.0, "max": None, "min_open": True, "max_open": False,
      "replaces": None, "choices": [], "defaults": {"isotropic": 30.0, "anisotropic": 30.0}, "decimals": 1,
      "step": 1.0, "unit": "angle",
-     "help": "tessellation of Part shapes: largest angle between neighbouring facets (degrees)"},
+     "help": "tessellation of Part shapes: largest angle between neighbouring facets (degrees)",
+     "label": "Angle",
+     "gui_help": "Part shapes are first cut into triangles as the STL export does: the largest angle, in "
+                 "degrees, between neighbouring triangles. Smaller follows curved faces more closely."},
 )
 TESSELLATION_DEFAULTS = {row["name"]: row["defaults"]["isotropic"] for row in TESSELLATION}
 MODE = "mode"  # the parameter whose value selects the defaults of the others
@@ -99,6 +106,79 @@ def editor_range(r):
     if r["max"] is not None:
         high = min(high, r["max"] - (unit if r["max_open"] else 0))
     return low, high, r["step"]
+
+
+def label(name):
+    """The name a user sees for a parameter ("Edge length"), as the task panel shows it."""
+    return row(name).get("label") or name
+
+
+def gui_help(name):
+    """What a parameter does to the mesh, in a CAD user's words (tooltips, property docs)."""
+    r = row(name)
+    return r.get("gui_help") or r["help"]
+
+
+UNIT_SUFFIX = {"length": " mm", "angle": "\u00b0"}
+
+
+def value_text(name, value):
+    """A value as the panel shows it, with its unit: "0.001 mm", "30\u00b0", "3"."""
+    r = row(name)
+    return "%s%s" % ("%g" % value if isinstance(value, float) else value, UNIT_SUFFIX.get(r["unit"], ""))
+
+
+def clamp(name, value):
+    """`value` moved into the range the editors of that number parameter accept (editor_range)."""
+    r = row(name)
+    low, high, _ = editor_range(r)
+    value = min(max(value, low), high)
+    return int(round(value)) if r["kind"] == "integer" else float(value)
+
+
+def edge_length_for(area, vertices):
+    """The edge length of an ideal mesh with `vertices` vertices on `area` (equilateral triangles,
+    about 2 per vertex; the core's target_site_count() inverted): 0 when either is not positive."""
+    if area <= 0 or vertices <= 0:
+        return 0.0
+    return math.sqrt(2.0 * area / (math.sqrt(3.0) * vertices))
+
+
+def vertices_for(area, edge_length):
+    """The inverse of edge_length_for(): the vertex count an edge length gives on `area`."""
+    if area <= 0 or edge_length <= 0:
+        return 0
+    return int(round(2.0 * area / (math.sqrt(3.0) * edge_length ** 2)))
+
+
+def check(values, area=None):
+    """ValueError naming the first setting of a resolved parameter dict that is out of range, as
+    the panel names it and with its unit ("Edge length 0.001 mm gives ... vertices ..."). With the
+    source's `area` (mm^2), also an edge length giving too few or too many vertices. The core checks
+    again when it runs; this one speaks the user's words."""
+    for r in rows():
+        value = values.get(r["name"])
+        if r["kind"] not in ("integer", "real") or value is None or (r["replaces"] and value == 0):
+            continue
+        low, high = r["min"], r["max"]
+        below = low is not None and (value <= low if r["min_open"] else value < low)
+        above = high is not None and (value >= high if r["max_open"] else value > high)
+        if below or above:
+            raise ValueError("%s %s is out of range: expected %s%s" % (
+                label(r["name"]), value_text(r["name"], value), r.get("expected") or "a number > 0",
+                UNIT_SUFFIX.get(r["unit"], "")))
+    replaced, replacing = size_names()
+    length = values.get(replacing)
+    if area and length:
+        count = vertices_for(area, length)
+        low, high, _ = editor_range(row(replaced))
+        if not low <= count <= high:
+            raise ValueError(
+                "%s %s gives %d vertices on this surface of %.4g mm\u00b2: expected an edge length giving "
+                "%d to %d vertices (%s to %s)" % (
+                    label(replacing), value_text(replacing, length), count, area, low, high,
+                    value_text(replacing, float("%.3g" % edge_length_for(area, high))),
+                    value_text(replacing, float("%.3g" % edge_length_for(area, low)))))
 
 
 def defaults(mode="isotropic"):

@@ -293,6 +293,9 @@ class PropertyRangeTest(unittest.TestCase):
         by_length = LiftRemesh.remesh_objects(self.doc, [self.block], edge_length=3.0, iterations=10)[0]
         expected = {}
         for obj in (by_count, by_length):  # as an earlier version saved them
+            for prop in ("SizeBy", "HausdorffDistance", "HausdorffPercent"):  # issue 34
+                obj.removeProperty(prop)
+            obj.setEditorMode("Report", 0)
             for row in constrained_rows():
                 prop = property_of(row)
                 value, group = getattr(obj, prop), obj.getGroupOfProperty(prop)
@@ -311,6 +314,19 @@ class PropertyRangeTest(unittest.TestCase):
             self.assertEqual(obj.Mesh.CountPoints, counts[obj.Name])
             self.assert_constraints_are_the_table_ranges(obj)
         self.assertEqual(by_length.Vertices, 6000)  # the default count, unused beside the length
+        # the size in use is said by SizeBy and only that one is shown; Report is hidden; the
+        # Hausdorff distance is read from the stored report in mm and in percent
+        self.assertEqual((by_count.SizeBy, by_length.SizeBy), ("Vertex count", "Edge length"))
+        self.assertEqual((by_count.getEditorMode("EdgeLength"), by_length.getEditorMode("Vertices")),
+                         (["Hidden"], ["Hidden"]))
+        self.assertEqual(by_length.getEditorMode("EdgeLength"), [])
+        for obj in (by_count, by_length):
+            self.assertIn("Hidden", obj.getEditorMode("Report"))
+            report = json.loads(obj.Report)
+            self.assertAlmostEqual(obj.HausdorffPercent, 100 * report["hausdorff_relative"], 9)
+            self.assertAlmostEqual(obj.HausdorffDistance.Value,
+                                   report["hausdorff_relative"] * report["bbox_diagonal"], 6)
+            self.assertGreater(obj.HausdorffPercent, 0.0)
         by_length.Iterations = 12
         self.doc.recompute()
         self.assertTrue(by_length.isValid())

@@ -136,7 +136,7 @@ class FemShellTest(unittest.TestCase):
     def test_shell_mesh_is_the_remeshed_mesh_in_linear_triangles(self):
         fem_obj = fem.make_fem_shell(self.doc, self.remeshed)
         self.assertTrue(fem_obj.isDerivedFrom("Fem::FemMeshObject"))
-        self.assertEqual((fem_obj.Name, fem_obj.Label), ("Remesh_FEM", "Remesh_FEM"))
+        self.assertEqual((fem_obj.Name, fem_obj.Label), ("Remesh_FEM", "Plate_ShellMesh"))
         fem_mesh = fem_obj.FemMesh
         points, facets = self.mesh.Topology
         self.assertEqual(fem_mesh.NodeCount, len(points))

@@ -8,6 +8,7 @@ task dialog is not tracked by Gui.Control, so the tests drive the panel's accept
 and wait for the job with panel.wait(). Message boxes are recorded instead of shown.
 """
 import os
+import sys
 import tempfile
 import time
 import unittest
@@ -94,11 +95,20 @@ class GuiTestCase(unittest.TestCase):
         FreeCADGui.Selection.clearSelection()
         self.boxes = MessageBoxes()
         self.panel = None
+        # exceptions raised in Qt slots (timers, signals) go to sys.excepthook: FreeCAD's report view
+        self.uncaught = []
+        self.saved_hook = sys.excepthook
+        sys.excepthook = lambda kind, value, trace: self.uncaught.append(value)
 
     def tearDown(self):
         if self.panel is not None and self.panel.running():
             self.panel.cancel()
             self.panel.wait(TIMEOUT)
+        from LiftRemesh.gui import recompute
+
+        recompute.recomputer().cancel()
+        recompute.wait(TIMEOUT)
+        sys.excepthook = self.saved_hook
         self.boxes.restore()
         FreeCADGui.Selection.clearSelection()
         FreeCAD.closeDocument(self.doc.Name)
@@ -400,7 +410,258 @@ class FemShellTest(GuiTestCase):
         added = [self.doc.getObject(name) for name in set(self.names()) - before]
         self.assertEqual([obj.TypeId for obj in added], ["Fem::FemMeshObject"])
         self.assertEqual(added[0].FemMesh.FaceCount, feature.Mesh.CountFacets)
+        self.assertEqual(added[0].Label, "Block_ShellMesh")  # named after the part, as FEM's FEMMeshGmsh
+        # a confirmation the user sees without the report view
+        self.assertIn("Block_ShellMesh", FreeCADGui.getMainWindow().statusBar().currentMessage())
         self.assertFalse(feature.ViewObject.Visibility)  # the FEM mesh lies on it
         self.doc.undo()  # one step
         self.assertEqual(set(self.names()), before)
         self.assertTrue(feature.ViewObject.Visibility)
+
+    def test_fem_shell_goes_into_the_active_analysis_with_a_thickness(self):
+        import FemGui
+        import ObjectsFem
+
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        FemGui.setActiveAnalysis(analysis)
+        before = set(self.names())
+        self.select(feature)
+        FreeCADGui.runCommand(FEM_SHELL)
+        FreeCADGui.Selection.clearSelection()
+        self.assertEqual(self.boxes.shown, [])
+        added = {self.doc.getObject(name) for name in set(self.names()) - before}
+        self.assertEqual(set(analysis.Group), added)
+        [mesh] = [obj for obj in added if obj.TypeId == "Fem::FemMeshObject"]
+        [thickness] = [obj for obj in added if obj is not mesh]
+        self.assertEqual(thickness.Proxy.Type, "Fem::ElementGeometry2D")
+        volume, area = block.Shape.Volume, block.Shape.Area
+        self.assertAlmostEqual(thickness.Thickness.Value, float("%.2g" % (2 * volume / area)))
+        self.assertIn("Analysis", FreeCADGui.getMainWindow().statusBar().currentMessage())
+        # a second shell mesh joins the analysis and its thickness, which is not repeated
+        self.select(feature)
+        FreeCADGui.runCommand(FEM_SHELL)
+        FreeCADGui.Selection.clearSelection()
+        self.assertEqual(len(analysis.Group), 3)
+        self.doc.undo()
+        self.assertEqual(len(analysis.Group), 2)
+        self.doc.undo()
+        self.assertEqual(set(self.names()), before)
+
+
+def wait_until(condition, what, timeout=TIMEOUT):
+    """Processes GUI events until condition() is true; fails the test after `timeout` seconds."""
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError("timed out waiting for " + what)
+        process_events()
+        time.sleep(0.02)
+
+
+class RetryAndCloseTest(GuiTestCase):
+    """Issue 34, items 1 and 2: an error keeps the panel usable, and a closed panel leaves nothing
+    running behind it."""
+
+    def test_a_retry_after_an_error_succeeds_and_adds_the_result(self):
+        block = add_box_with_hole(self.doc)
+        before = self.names()
+        panel = self.make_panel([block])
+        panel._widget("edge_length_radio").setChecked(True)
+        panel._widget("edge_length").setValue(0.001)  # billions of vertices on a 20 mm block
+        self.assertFalse(panel.accept())
+        panel.wait(TIMEOUT)
+        self.assertEqual(panel.outcome, "failed")
+        [error] = self.boxes.texts("critical")
+        # the setting named as the panel names it, with units, and what would be accepted
+        self.assertIn("Edge length 0.001 mm", error)
+        self.assertIn("mm\u00b2", error)
+        self.assertNotIn("edge_length", error)
+        # back to the vertex count: clamped to the core's largest count, radio and field in step
+        panel._widget("vertices_radio").setChecked(True)
+        self.assertEqual(panel._widget("vertices").value(), native.load().parameters()[0]["max"])
+        self.assertTrue(panel._widget("vertices").isEnabled())
+        self.assertFalse(panel._widget("edge_length").isEnabled())
+        panel.set_vertices(600)
+        self.assertFalse(panel.accept())
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+        self.assertEqual(len(set(self.names()) - set(before)), 1)
+        self.assertAlmostEqual(panel.created[0].Mesh.CountPoints, 600, delta=6)
+        self.assertEqual(self.uncaught, [])
+
+    def test_no_timer_runs_and_no_exception_after_the_panel_is_gone(self):
+        import shiboken2
+
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block], vertices=3000)
+        panel._widget("iterations").setValue(100000)  # still running when the panel goes
+        self.assertFalse(panel.accept())
+        wait_until(lambda: panel.job.progress.stage == "optimize", "the optimisation")
+        job, timer = panel.job, panel.timer
+        self.assertTrue(timer.isActive())
+        shiboken2.delete(panel.form)  # FreeCAD deletes the task box and the form in it
+        self.assertFalse(shiboken2.isValid(timer))  # the poll timer went with the form
+        self.assertTrue(job.cancel_requested)  # and the job was asked to stop
+        self.assertFalse(panel.running())
+        end = time.monotonic() + 1.0
+        while time.monotonic() < end:
+            process_events()
+            time.sleep(0.02)
+        self.assertEqual(self.uncaught, [])
+        self.assertFalse(panel.accept())  # a late call on a dead panel is refused without raising
+        self.assertEqual(self.uncaught, [])
+        job.cancel()
+        job.join(TIMEOUT)
+
+    def test_closing_the_panel_stops_its_timer(self):
+        block = add_box_with_hole(self.doc)
+        panel = self.make_panel([block])
+        self.remesh_in(panel)
+        self.assertTrue(panel.accept())  # OK after the result closes
+        self.assertFalse(panel.timer.isActive())
+        self.assertEqual(self.uncaught, [])
+
+    def remesh_in(self, panel):
+        FreeCADGui.Selection.clearSelection()
+        self.assertFalse(panel.accept())
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+
+
+class ApplyTest(GuiTestCase):
+    """Issue 34, item 8: Apply runs again with the new values and replaces its previous result."""
+
+    def test_apply_replaces_the_previous_result_and_one_undo_removes_it(self):
+        block = add_box_with_hole(self.doc)
+        before = self.names()
+        panel = self.make_panel([block], vertices=500)
+        self.assertTrue(panel.apply())
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+        [first] = panel.created
+        count = first.Mesh.CountPoints
+        self.assertAlmostEqual(count, 500, delta=5)
+        undo_count = self.doc.UndoCount
+        self.assertFalse(panel._widget("report_group").isHidden())  # the report stays
+        self.assertTrue(panel._widget("size_group").isEnabled())  # the panel stays editable
+        panel.set_vertices(700)
+        self.assertTrue(panel.apply())
+        self.assertEqual(panel.wait(TIMEOUT), "done", self.boxes.shown)
+        self.assertEqual(panel.created, [first])  # replaced, not added
+        self.assertEqual(sorted(set(self.names()) - set(before)), [first.Name])
+        self.assertEqual(first.Vertices, 700)
+        self.assertAlmostEqual(first.Mesh.CountPoints, 700, delta=7)
+        self.assertEqual(self.doc.UndoCount, undo_count + 1)
+        self.assertEqual(len(self.panel.histogram.output_counts), 10)
+        self.assertTrue(panel.accept())  # OK with the applied values closes
+        self.doc.undo()  # one step back: the first result
+        self.assertEqual((first.Mesh.CountPoints, first.Vertices), (count, 500))
+        self.doc.undo()
+        self.assertEqual(self.names(), before)
+        self.assertEqual(self.uncaught, [])
+
+
+class PropertyEditTest(GuiTestCase):
+    """Issue 34, items 3 to 5: the property view and a recompute after a property edit."""
+
+    def test_a_recompute_shows_progress_and_gives_the_new_mesh(self):
+        from LiftRemesh.gui import recompute
+
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        feature.Vertices = 900
+        start = time.monotonic()
+        self.doc.recompute()
+        self.assertLess(time.monotonic() - start, 2.0)  # the GUI is not held while it runs
+        count = feature.Mesh.CountPoints
+        self.assertAlmostEqual(count, 500, delta=5)  # the previous mesh until the new one is there
+        seen = []
+        runner = recompute.recomputer()
+
+        def progress_shown():
+            process_events()
+            widget = runner.progress.widget if runner.progress is not None else None
+            if widget is not None and widget.isVisible() and runner.progress.bar.value() > 0:
+                seen.append((runner.progress.bar.value(), runner.progress.text.text()))
+            return bool(seen) or not runner.running() and time.monotonic() - start > 1.0
+
+        wait_until(progress_shown, "the recompute's progress")
+        self.assertTrue(seen, "no progress shown")
+        self.assertIn(feature.Label, seen[0][1])
+        recompute.wait(TIMEOUT)
+        self.assertAlmostEqual(feature.Mesh.CountPoints, 900, delta=9)
+        self.assertNotIn("Touched", feature.State)
+        self.assertFalse(runner.progress.widget.isVisible())
+        self.assertIn("recomputed", FreeCADGui.getMainWindow().statusBar().currentMessage())
+        self.assertEqual(self.uncaught, [])
+
+    def test_a_recompute_can_be_cancelled_and_keeps_the_mesh(self):
+        from LiftRemesh.gui import recompute
+
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        count = feature.Mesh.CountPoints
+        feature.Iterations = 100000
+        feature.Vertices = 3000
+        self.doc.recompute()
+        runner = recompute.recomputer()
+        wait_until(lambda: runner.running() and list(runner.runs.values())[0].job.progress.stage == "optimize",
+                   "the optimisation")
+        runner.progress.cancel.click()  # the Cancel button beside the progress bar
+        recompute.wait(TIMEOUT)
+        self.assertEqual(feature.Mesh.CountPoints, count)
+        self.assertIn("Touched", feature.State)  # still to be recomputed
+        self.assertIn("cancelled", FreeCADGui.getMainWindow().statusBar().currentMessage())
+
+    def test_a_recompute_error_is_one_line_and_keeps_the_mesh(self):
+        from LiftRemesh.gui import recompute
+
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        count = feature.Mesh.CountPoints
+        errors = []
+        observer = ConsoleErrors(errors)
+        feature.SizeBy = "Edge length"
+        feature.EdgeLength = 0.001
+        with observer:
+            self.doc.recompute()
+            recompute.wait(TIMEOUT)
+        self.assertEqual(feature.Mesh.CountPoints, count)
+        self.assertEqual(len(errors), 1, errors)
+        self.assertEqual(errors[0].count("\n"), 1)  # one line, no traceback
+        self.assertIn("Edge length 0.001 mm", errors[0])
+        self.assertIn("Touched", feature.State)
+        self.assertEqual(self.uncaught, [])
+
+    def test_the_property_view_shows_what_a_user_needs(self):
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        self.assertIn("Hidden", feature.getEditorMode("Report"))
+        self.assertTrue(feature.Report.startswith("{"))  # still there for macros and the file
+        self.assertEqual(feature.SizeBy, "Vertex count")
+        self.assertIn("Hidden", feature.getEditorMode("EdgeLength"))  # not set: not shown
+        feature.SizeBy = "Edge length"  # the equivalent length on the block's area
+        area = block.Shape.Area
+        self.assertAlmostEqual(feature.EdgeLength.Value, (2 * area / (3 ** 0.5 * 500)) ** 0.5, 3)
+        self.assertIn("Hidden", feature.getEditorMode("Vertices"))
+        self.assertEqual(feature.getEditorMode("EdgeLength"), [])
+        for prop in ("Sigma", "Nu", "Eta", "Iterations", "Vertices", "EdgeLength"):
+            doc = feature.getDocumentationOfProperty(prop)
+            for jargon in ("unit-ball", "rho^", "L-BFGS", "sites", "--"):
+                self.assertNotIn(jargon, doc, prop)
+        self.assertIn("mm", feature.getDocumentationOfProperty("EdgeLength"))
+
+
+class ConsoleErrors:
+    """Records FreeCAD's console errors (the report view's red lines) while in a with block."""
+
+    def __init__(self, errors):
+        self.errors = errors
+
+    def __enter__(self):
+        self.saved = FreeCAD.Console.PrintError
+        FreeCAD.Console.PrintError = lambda text: (self.errors.append(text), self.saved(text))
+        return self
+
+    def __exit__(self, *exc):
+        FreeCAD.Console.PrintError = self.saved
+        return False

@@ -80,25 +80,49 @@ class CommandFemShell:
 
     def Activated(self):
         import LiftRemesh
+        from .. import fem
 
         doc = common.active_document()
         meshes = selected_meshes()
         if doc is None or not meshes:
             common.report_error("Select one or more mesh objects to make FEM shell meshes of.")
             return
+        analysis = active_analysis(doc)
+        added = []
         try:
             with document.document_change(doc, "FEM shell mesh"):
                 created = [LiftRemesh.make_fem_shell(doc, obj) for obj in meshes]
                 for obj in meshes:  # the FEM mesh lies on it; undoing shows it again
                     if obj.ViewObject is not None:
                         obj.ViewObject.hide()
+                if analysis is not None:  # as FEM's own mesh commands do
+                    for mesh_obj, fem_obj in zip(meshes, created):
+                        added += fem.add_to_analysis(analysis, fem_obj, fem.plate_thickness(fem.source_shape(mesh_obj)))
             doc.recompute()
         except Exception as error:
             common.report_error("FEM shell mesh failed, the document is unchanged: %s"
                                 % common.describe_error(error))
             return
-        for obj in created:
-            FreeCAD.Console.PrintMessage("LiftRemesh: FEM shell mesh %s added\n" % getattr(obj, "Label", obj))
+        message = "FEM shell mesh %s added" % ", ".join(
+            "%s (%d triangles)" % (obj.Label, obj.FemMesh.FaceCount) for obj in created)
+        if analysis is not None:
+            extra = [obj.Label for obj in added if obj not in created]
+            message += " to %s%s" % (analysis.Label, " with the shell thickness %s" % ", ".join(extra) if extra else "")
+        FreeCAD.Console.PrintMessage("LiftRemesh: %s\n" % message)
+        common.show_status(message)
+
+
+def active_analysis(doc):
+    """FEM's active analysis when it is in `doc` (FemGui.getActiveAnalysis), else None."""
+    try:
+        import FemGui
+
+        analysis = FemGui.getActiveAnalysis()
+    except Exception:  # FEM not installed or not loaded: no analysis
+        return None
+    if analysis is None or analysis.Document is not doc:
+        return None
+    return analysis
 
 
 FreeCADGui.addCommand(REMESH, CommandRemesh())

@@ -39,12 +39,38 @@ def selected_objects():
     return list(FreeCADGui.Selection.getSelection(doc.Name))
 
 
+def widget_alive(widget):
+    """False when `widget` (any Qt object) is None or its C++ object is gone (a closed task
+    panel's form and its children): touching it would raise RuntimeError."""
+    if widget is None:
+        return False
+    try:
+        import shiboken2 as shiboken
+    except ImportError:
+        try:
+            import shiboken6 as shiboken
+        except ImportError:
+            return True
+    return shiboken.isValid(widget)
+
+
 def main_window():
     """The parent for message boxes (None when there is no main window)."""
     try:
         return FreeCADGui.getMainWindow()
     except Exception:  # no GUI main window
         return None
+
+
+STATUS_MS = 10000  # how long a confirmation stays in the status bar
+
+
+def show_status(message):
+    """A confirmation the user sees without the report view: the main window's status bar, for
+    STATUS_MS (FEM's Gmsh panel says its result in the panel; a command without a panel here)."""
+    window = main_window()
+    if window is not None:
+        window.statusBar().showMessage(message, STATUS_MS)
 
 
 def report_error(message, title=TITLE + ": error"):

@@ -54,14 +54,13 @@ class Progress:
         return min((self.index + part) / max(count, 1), 1.0)
 
     def text(self, labels):
-        """A status line such as 'Box: optimising, iteration 40 of 100 (energy 0.1234)'."""
+        """A status line such as 'Box: optimising, iteration 40 of 100' (the energy, a figure of the
+        method, is not a user's business)."""
         label = labels[self.index] if self.index < len(labels) else ""
         prefix = "[%d/%d] " % (self.index + 1, len(labels)) if len(labels) > 1 else ""
         line = "%s%s: %s" % (prefix, label, STAGE_NAMES.get(self.stage, self.stage))
         if self.total:
             line += ", iteration %d of %d" % (self.iteration, self.total)
-            if self.energy:
-                line += " (energy %.4g)" % self.energy
         return line
 
 

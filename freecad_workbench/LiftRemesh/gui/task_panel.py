@@ -1,19 +1,25 @@
-"""The Remesh task panel: parameters, then OK runs the remesh in a worker thread with a progress
-bar (Cancel stops it), then the quality report.
+"""The Remesh task panel: parameters, then OK or Apply runs the remesh in a worker thread with a
+progress bar (Cancel stops it), then the quality report.
 
-Life of a panel (FreeCAD's task dialog protocol: accept() and reject() return True to close):
-  - OK: the parameters are checked, the sources tessellated (main thread), a RemeshJob started;
-    the panel stays open, OK is disabled and refused while the job runs.
+Life of a panel (FreeCAD's task dialog protocol: accept() and reject() return True to close,
+clicked() gets the other buttons):
+  - OK or Apply: the parameters are checked, the sources tessellated (main thread), a RemeshJob
+    started; the panel stays open, OK and Apply are disabled and refused while the job runs. The
+    panel does not scroll: OK and Cancel stay where they are.
   - Cancel while it runs: the job is asked to stop; when it has, the panel says so (console and
     message box) and closes. The document is unchanged.
-  - Job done: the features are added in one transaction (main thread), the quality report and the
-    kappa histogram are shown, and the only button left is Close.
+  - Job done: the features are added in one transaction (main thread), or, after an earlier Apply,
+    the features that one added take the new parameters and mesh in one transaction; the quality
+    report and the kappa histogram are shown. After OK the only button left is Close; after Apply
+    the panel stays as it is, to change values and Apply again (as FreeCAD's "Remesh by Gmsh"
+    does). OK with the values already applied closes; Cancel then closes and keeps the result.
   - Job failed: console and message box; the document is unchanged and the panel stays open so
     the parameters can be changed and OK pressed again.
 With `feature` (editing an existing remesh feature, opened by a double click) the result replaces
 that feature's mesh and parameters in one transaction instead of adding a new feature.
+No exception leaves the panel's slots and the dialog protocol: FreeCAD would close the dialog and
+print a traceback. Once the panel has closed, its timer is stopped and its job cancelled.
 """
-import math
 import time
 
 import FreeCAD
@@ -58,40 +64,6 @@ def check_selection(doc, objects):
             meshing.shape_of(obj)
 
 
-def source_area(obj):
-    """The area of a source (shape or mesh), 0 when it cannot be had."""
-    try:
-        if meshing.source_kind(obj) == "mesh":
-            return obj.Mesh.Area
-        return meshing.shape_of(obj).Area
-    except Exception:  # only a hint for the size fields
-        return 0.0
-
-
-def edge_length_for(area, vertices):
-    """The edge length of an ideal mesh with `vertices` vertices on `area` (equilateral triangles,
-    about 2 per vertex): only a starting value when the user switches the kind of target size."""
-    if area <= 0 or vertices <= 0:
-        return 0.0
-    return math.sqrt(2.0 * area / (math.sqrt(3.0) * vertices))
-
-
-def vertices_for(area, edge_length):
-    """The inverse of edge_length_for()."""
-    if area <= 0 or edge_length <= 0:
-        return 0
-    return int(round(2.0 * area / (math.sqrt(3.0) * edge_length ** 2)))
-
-
-def scroll_into_view(widget):
-    """Scrolls the task view (the QScrollArea holding the panel, if any) to show `widget`."""
-    area = widget.parentWidget()
-    while area is not None and not isinstance(area, QtGui.QScrollArea):
-        area = area.parentWidget()
-    if area is not None:
-        QtCore.QTimer.singleShot(0, lambda: area.ensureWidgetVisible(widget))
-
-
 class RemeshTaskPanel:
     """Task panel remeshing `sources` (Part shapes or meshes of one document). Raises ValueError
     for a bad selection before any widget is shown. See the module doc for its behaviour."""
@@ -107,15 +79,20 @@ class RemeshTaskPanel:
         self.results = []
         self._buttons = None
         self._close_when_stopped = False
+        self._closed = False
         self._started = 0.0
+        self._applying = False  # the running job was started by Apply (the panel stays editable)
+        self._replaced = False  # the last result replaced an earlier one
+        self._applied = None  # the parameters of the last result, when Apply made it
         self.form = FreeCADGui.PySideUic.loadUi(common.ui_path(UI_FILE))
         self.form.setWindowTitle("Edit remesh" if feature is not None else "Remesh")
         self.form.setWindowIcon(QtGui.QIcon(common.icon_path("LiftRemesh_Remesh.svg")))
         self.histogram = report_view.KappaHistogram()
         self._widget("histogram_box").layout().addWidget(self.histogram)
-        self.timer = QtCore.QTimer()
+        self.timer = QtCore.QTimer(self.form)  # goes with the form
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
+        self.form.destroyed.connect(lambda *_: self._stop())  # FreeCAD deletes it when the dialog closes
         self._setup()
         initial = remesh_feature.params_of(feature) if feature is not None else parameters.defaults()
         self.set_params(initial)
@@ -123,28 +100,50 @@ class RemeshTaskPanel:
     # --- FreeCAD task dialog protocol -------------------------------------------------------
 
     def getStandardButtons(self):
-        return button_flags(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+        return button_flags(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Apply | QtGui.QDialogButtonBox.Cancel)
 
     def modifyStandardButtons(self, buttons):
-        """Called by FreeCAD with the dialog's button box: kept to disable OK while running."""
+        """Called by FreeCAD with the dialog's button box: kept to disable OK and Apply while running."""
         self._buttons = buttons
 
     def accept(self):
         """OK: starts the remesh (the panel stays open); after a result, closes."""
-        if self.running():
-            FreeCAD.Console.PrintWarning("LiftRemesh: the remesh is still running: wait, or Cancel it\n")
-            return False
-        if self.outcome == "done":
-            return self._leave()
-        self.start()
+        try:
+            if self.running():
+                FreeCAD.Console.PrintWarning("LiftRemesh: the remesh is still running: wait, or Cancel it\n")
+                return False
+            if self.outcome == "done" and (self._applied is None or self._applied == self.params()):
+                return self._leave()
+            self.start()
+        except Exception as error:  # see the module doc
+            self._failed(error)
         return False
 
     def reject(self):
         """Cancel: stops a running remesh (the panel closes once it has stopped), else closes."""
-        if self.running():
-            self.cancel(close=True)
-            return False
+        try:
+            if self.running():
+                self.cancel(close=True)
+                return False
+        except Exception as error:  # see the module doc
+            common.report_error("Cannot cancel the remesh: %s" % common.describe_error(error))
         return self._leave()
+
+    def clicked(self, button):
+        """The dialog's other buttons: Apply runs the remesh and keeps the panel open."""
+        if button == button_flags(QtGui.QDialogButtonBox.Apply):
+            self.apply()
+
+    def apply(self):
+        """Apply: remeshes with the values shown; the result replaces the previous one (one undo
+        step) and the panel stays open. False when refused or it could not start."""
+        try:
+            if self.running():
+                return False
+            return self.start(applying=True)
+        except Exception as error:  # see the module doc
+            self._failed(error)
+            return False
 
     # --- the job ------------------------------------------------------------------------------
 
@@ -152,24 +151,26 @@ class RemeshTaskPanel:
         """True from OK until the job's outcome has been handled."""
         return self.job is not None
 
-    def start(self):
+    def start(self, applying=False):
         """Checks the parameters, tessellates the sources and starts the worker. False (and the
         error reported) when something is wrong; the document is not changed either way."""
         try:
             params = self.params()
             values = parameters.resolve(params)
             check_selection(self.doc, self.sources)
+            for obj in self.sources:
+                parameters.check(values, meshing.source_area(obj))
             meshes = self._input_meshes(values)
         except Exception as error:
             self._failed(error)
             return False
         self.outcome = None
+        self._applying = applying
         self.job = remesh_job.RemeshJob(meshes, params)
         self._started = time.monotonic()
         self._set_running(True)
         self.job.start()
         self.timer.start()
-        scroll_into_view(self._widget("progress_group"))
         return True
 
     def cancel(self, close=False):
@@ -178,7 +179,8 @@ class RemeshTaskPanel:
             return
         self._close_when_stopped = self._close_when_stopped or close
         self.job.cancel()
-        self._widget("status").setText("Cancelling...")
+        if common.widget_alive(self.form):
+            self._widget("status").setText("Cancelling...")
 
     def wait(self, timeout=None):
         """Processes GUI events until the running job's outcome has been handled (for tests and
@@ -201,16 +203,24 @@ class RemeshTaskPanel:
             QtGui.QApplication.restoreOverrideCursor()
 
     def _poll(self):
-        """Timer slot (main thread): shows the progress; handles the outcome once the job ended."""
+        """Timer slot (main thread): shows the progress; handles the outcome once the job ended.
+        A panel whose form is gone (closed) stops polling and cancels its job."""
         current = self.job
+        if self._closed or not common.widget_alive(self.form):
+            self._stop()
+            return
         if current is None:
             self.timer.stop()
             return
-        self._show_progress(current.progress)
-        if current.finished():
-            self.timer.stop()
+        try:
+            self._show_progress(current.progress)
+            if current.finished():
+                self.timer.stop()
+                self.job = None
+                self._ended(current)
+        except Exception as error:  # see the module doc
             self.job = None
-            self._ended(current)
+            self._failed(error)
 
     def _ended(self, finished):
         """Handles a job that has ended: cancelled, failed or done."""
@@ -223,10 +233,13 @@ class RemeshTaskPanel:
             self._store(finished)
 
     def _store(self, finished):
-        """Adds the results to the document (one transaction) and shows the report."""
+        """Adds the results to the document, or replaces the previous ones (one transaction), and
+        shows the report."""
         try:
-            if self.feature is not None:
-                self.created = self._replace_feature(finished.params, finished.results[0])
+            previous = self._previous_results()
+            self._replaced = bool(previous)
+            if previous:
+                self.created = self._replace(previous, finished.params, finished.results)
             else:
                 self.created = remesh_feature.add_results(self.doc, self.sources, finished.params, finished.results)
         except Exception as error:
@@ -234,16 +247,25 @@ class RemeshTaskPanel:
             return
         self.results = finished.results
         self.outcome = "done"
-        self._show_done()
+        self._applied = dict(finished.params) if self._applying else None
+        self._show_done(final=not self._applying)
 
-    def _replace_feature(self, params, result):
-        """Edit mode: the feature takes the new parameters and mesh, in one transaction."""
-        obj = self.feature
-        with document.document_change(self.doc, "Edit remesh"):
-            remesh_feature.set_params(obj, params)
-            remesh_feature.apply_result(obj, result)
-            obj.purgeTouched()
-        return [obj]
+    def _previous_results(self):
+        """The features a new result replaces: the edited feature, or what an earlier Apply of this
+        panel added (while they all still exist); [] when the result is to be added."""
+        if self.feature is not None:
+            return [self.feature]
+        alive = [obj for obj in self.created if self.doc.getObject(obj.Name) is obj]
+        return alive if self.created and len(alive) == len(self.sources) else []
+
+    def _replace(self, features, params, results):
+        """The features take the new parameters and meshes, in one transaction."""
+        with document.document_change(self.doc, "Edit remesh" if self.feature is not None else "Remesh"):
+            for obj, result in zip(features, results):
+                remesh_feature.set_params(obj, params)
+                remesh_feature.apply_result(obj, result)
+                obj.purgeTouched()
+        return list(features)
 
     def _cancelled(self):
         """The job was cancelled: nothing was added; say so, and close if Cancel asked to."""
@@ -257,22 +279,33 @@ class RemeshTaskPanel:
         """Reports a failure (console, message box, status line); the panel stays open."""
         self.outcome = "failed"
         message = common.describe_error(error)
+        if common.widget_alive(self.form) and self.job is None:
+            self._set_running(False)
         self._reset_progress("Failed: %s" % message)
         common.report_error("Remesh failed, the document is unchanged: %s" % message)
 
     # --- closing --------------------------------------------------------------------------------
 
+    def _stop(self):
+        """The panel is closing or gone: no more polling, and no job left running."""
+        self._closed = True
+        if common.widget_alive(self.timer):  # a child of the form: gone with it
+            self.timer.stop()
+        if self.job is not None:
+            self.job.cancel()
+            self.job = None
+
     def _leave(self):
         """Ends the panel's life from accept()/reject() (their True return closes the dialog):
         stops polling and, when editing a feature, leaves edit mode. Returns True."""
-        self.timer.stop()
+        self._stop()
         if self.feature is not None and FreeCADGui.ActiveDocument is not None:
             FreeCADGui.ActiveDocument.resetEdit()
         return True
 
     def _close(self):
         """Closes the panel from outside accept()/reject() (after a cancel has taken effect)."""
-        self.timer.stop()
+        self._stop()
         if self.feature is not None and FreeCADGui.ActiveDocument is not None:
             FreeCADGui.ActiveDocument.resetEdit()  # unsetEdit closes the dialog
         else:
@@ -296,7 +329,7 @@ class RemeshTaskPanel:
             for widget_name in (row["name"], row["name"] + "_label", row["name"] + "_radio"):
                 widget = self._widget(widget_name)
                 if widget is not None:
-                    widget.setToolTip(row["help"])
+                    widget.setToolTip(parameters.gui_help(row["name"]))
             if row["kind"] in ("integer", "real"):
                 self._set_range(self._widget(row["name"]), row)
         mode.currentIndexChanged.connect(self._mode_changed)
@@ -309,6 +342,34 @@ class RemeshTaskPanel:
             for obj, kind in zip(self.sources, kinds)))
         self._widget("report_group").hide()
         self._widget("progress").setValue(0)
+        self._add_advanced_toggle()
+        # Progress and then the report right below the sources, in view with the buttons while a
+        # run goes on and after it (the panel does not scroll: OK and Cancel would leave the screen).
+        layout = self.form.layout()
+        for name in ("progress_group", "report_group"):
+            layout.removeWidget(self._widget(name))
+            layout.insertWidget(layout.indexOf(self._widget("size_group")), self._widget(name))
+
+    def _add_advanced_toggle(self):
+        """The Advanced group starts collapsed: an arrow button above it shows and hides it."""
+        group = self._widget("advanced_group")
+        toggle = QtGui.QToolButton()
+        toggle.setObjectName("advanced_toggle")
+        toggle.setText(group.title())
+        toggle.setToolTip("Show or hide the settings a user rarely changes")
+        toggle.setCheckable(True)
+        toggle.setAutoRaise(True)
+        toggle.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
+        toggle.setArrowType(QtCore.Qt.RightArrow)
+        group.setTitle("")
+        layout = self.form.layout()
+        layout.insertWidget(layout.indexOf(group), toggle)
+        toggle.toggled.connect(self._advanced_toggled)
+        self._advanced_toggled(False)
+
+    def _advanced_toggled(self, shown):
+        self._widget("advanced_toggle").setArrowType(QtCore.Qt.DownArrow if shown else QtCore.Qt.RightArrow)
+        self._widget("advanced_group").setVisible(shown)
 
     @staticmethod
     def _set_range(spin_box, row):
@@ -336,13 +397,13 @@ class RemeshTaskPanel:
         self._widget("vertices_radio").blockSignals(True)
         self._widget("vertices_radio" if not by_length else "edge_length_radio").setChecked(True)
         self._widget("vertices_radio").blockSignals(False)
-        area = source_area(self.sources[0])
-        vertices = values.get("vertices") or vertices_for(area, values.get("edge_length") or 0.0)
+        area = meshing.source_area(self.sources[0])
+        vertices = values.get("vertices") or parameters.vertices_for(area, values.get("edge_length") or 0.0)
         if vertices:
-            self._widget("vertices").setValue(vertices)
-        length = values.get("edge_length") or edge_length_for(area, self._widget("vertices").value())
+            self._widget("vertices").setValue(parameters.clamp("vertices", vertices))
+        length = values.get("edge_length") or parameters.edge_length_for(area, self._widget("vertices").value())
         if length:
-            self._widget("edge_length").setValue(length)
+            self._widget("edge_length").setValue(parameters.clamp("edge_length", length))
         self._update_size_fields()
 
     def params(self):
@@ -372,17 +433,20 @@ class RemeshTaskPanel:
             self._widget(name).setValue(defaults[name])
 
     def _size_kind_changed(self, by_vertices):
-        """Vertex count <-> edge length: the other field gets the equivalent value."""
-        area = source_area(self.sources[0])
-        if by_vertices:
-            vertices = vertices_for(area, self._widget("edge_length").value())
-            if vertices:
-                self._widget("vertices").setValue(vertices)
-        else:
-            length = edge_length_for(area, self._widget("vertices").value())
-            if length:
-                self._widget("edge_length").setValue(length)
-        self._update_size_fields()
+        """Vertex count <-> edge length: the field now used gets the equivalent of the other, moved
+        into its range (a tiny edge length gives billions of vertices, more than the core takes)."""
+        try:
+            area = meshing.source_area(self.sources[0])
+            if by_vertices:
+                vertices = parameters.vertices_for(area, self._widget("edge_length").value())
+                if vertices:
+                    self._widget("vertices").setValue(parameters.clamp("vertices", vertices))
+            else:
+                length = parameters.edge_length_for(area, self._widget("vertices").value())
+                if length:
+                    self._widget("edge_length").setValue(parameters.clamp("edge_length", length))
+        finally:
+            self._update_size_fields()  # the radio buttons and the fields stay in step
 
     def _update_size_fields(self):
         by_vertices = self._widget("vertices_radio").isChecked()
@@ -398,6 +462,7 @@ class RemeshTaskPanel:
         kinds = [meshing.source_kind(obj) for obj in self.sources]
         self._widget("tessellation_group").setEnabled(not running and "shape" in kinds)
         self._set_button_enabled(QtGui.QDialogButtonBox.Ok, not running)
+        self._set_button_enabled(QtGui.QDialogButtonBox.Apply, not running)
         if running:
             self._widget("report_group").hide()
             self._show_progress(self.job.progress)
@@ -415,20 +480,25 @@ class RemeshTaskPanel:
         self._widget("status").setText("%s  (%.0f s)" % (progress.text(labels), time.monotonic() - self._started))
 
     def _reset_progress(self, text):
+        if not common.widget_alive(self.form):
+            return
         self._widget("progress").setValue(0)
         self._widget("status").setText(text)
 
-    def _show_done(self):
-        """The result: full progress bar, report of each source, Close as the only button."""
+    def _show_done(self, final=True):
+        """The result: full progress bar, report of each source; after OK (`final`) the values
+        shown as used and Close as the only button, after Apply the panel left editable."""
         bar = self._widget("progress")
         bar.setValue(bar.maximum())
+        replaced = self._replaced
         self._widget("status").setText("Done in %.1f s: %s %s." % (
             time.monotonic() - self._started, ", ".join(obj.Label for obj in self.created),
-            "updated" if self.feature is not None else "added"))
-        for name in ("size_group", "method_group"):
-            self._widget(name).setEnabled(False)  # shown as used; the feature's properties keep them
-        for name in ("advanced_group", "tessellation_group"):
-            self._widget(name).hide()  # room for the report
+            "updated" if replaced else "added"))
+        if final:
+            for name in ("size_group", "method_group"):
+                self._widget(name).setEnabled(False)  # shown as used; the feature's properties keep them
+            for name in ("advanced_toggle", "advanced_group", "tessellation_group"):
+                self._widget(name).hide()  # room for the report
         chooser = self._widget("report_source")
         chooser.blockSignals(True)
         chooser.clear()
@@ -437,11 +507,10 @@ class RemeshTaskPanel:
         chooser.setVisible(len(self.sources) > 1)
         self._widget("report_group").show()
         self._show_report(0)
-        scroll_into_view(self._widget("report_group"))
         for obj, result in zip(self.sources, self.results):
             FreeCAD.Console.PrintMessage("LiftRemesh: %s\n" % report_view.summary(obj.Label, result.report))
             meshing.print_warnings(result, obj.Label)
-        if self._buttons is not None:
+        if final and self._buttons is not None:
             self._buttons.setStandardButtons(QtGui.QDialogButtonBox.Close)
 
     def _show_report(self, index):
