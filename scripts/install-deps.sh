@@ -18,6 +18,9 @@ packages=(
   freecad-python3   # FreeCAD 0.20 with Part/MeshPart (OpenCASCADE): demo part, workbench
   time              # /usr/bin/time -v for peak memory in `make bench`
   tetgen            # TetGen: fills remeshed surfaces with tetrahedra (FEM solid mesh, fem_solid.py; tetgen_test.cpp)
+  xvfb              # a virtual X server: one FreeCAD test drives the real GUI window (tests/freecad/gui_window.py)
+  xauth             # xvfb-run needs it
+  python3-pyside2.qttest  # QTest: that test sends its clicks and keys through it
 )
 
 # Installed where the distribution has them; the tests that need one say they skipped without it.
