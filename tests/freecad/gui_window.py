@@ -172,6 +172,10 @@ def run():
     check(not widget(QtGui.QGroupBox, "advanced_group").isVisible(), "Advanced starts collapsed")
     check("unit-ball" not in widget(QtGui.QDoubleSpinBox, "nu").toolTip(), "tooltips in plain words")
     shot("1-panel-before.png")
+    say("form width %d, minimum %d, shown %d" % (form.width(), form.minimumSizeHint().width(),
+                                                 form.visibleRegion().boundingRect().width()))
+    check(form.visibleRegion().boundingRect().width() == form.width(),
+          "the panel fits the task view's default width (nothing cut on the right)")
 
     # an error: an edge length far too small, then back to the vertex count, then a retry
     click(widget(QtGui.QRadioButton, "edge_length_radio"))

@@ -103,8 +103,13 @@ class RemeshTaskPanel:
         return button_flags(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Apply | QtGui.QDialogButtonBox.Cancel)
 
     def modifyStandardButtons(self, buttons):
-        """Called by FreeCAD with the dialog's button box: kept to disable OK and Apply while running."""
+        """Called by FreeCAD with the dialog's button box: kept to disable OK and Apply while running.
+        Each button is made no wider than its icon and text: the style's minimum width (80 px) for
+        three buttons is more than the task view's default width."""
         self._buttons = buttons
+        for button in buttons.buttons():
+            width = button.fontMetrics().boundingRect(button.text()).width()
+            button.setMaximumWidth(width + button.iconSize().width() + 24)
 
     def accept(self):
         """OK: starts the remesh (the panel stays open); after a result, closes."""
