@@ -48,7 +48,12 @@ QUALITY_PROPERTIES = {
     "Report": ("App::PropertyString", None, "the full quality report (JSON, as the command-line tool writes it)", 2),
 }
 SIZE_BY = "SizeBy"  # which of the two target sizes is used (an enumeration of their labels)
-_adding = set()  # id() of the features whose SizeBy is being added: its first values convert nothing
+_adding = set()  # _key() of the features whose SizeBy is being added: its first values convert nothing
+
+
+def _key(obj):
+    """A feature's identity across Python wrappers: (document name, object name)."""
+    return obj.Document.Name, obj.Name
 
 
 # The GUI gives a new feature its view provider through this one hook, set when LiftRemesh.gui is
@@ -158,12 +163,12 @@ class RemeshFeature(StatelessProxy):
             by_length = getattr(obj, parameters.properties()[parameters.size_names()[1]][0]).Value > 0
             obj.addProperty("App::PropertyEnumeration", SIZE_BY, "Size",
                             "which target size sets how fine the mesh is: the vertex count, or the edge length (mm)")
-            _adding.add(id(obj))  # the stored sizes stay as they are (see onChanged)
+            _adding.add(_key(obj))  # the stored sizes stay as they are (see onChanged)
             try:
                 setattr(obj, SIZE_BY, size_choices())
                 setattr(obj, SIZE_BY, size_choices()[1 if by_length else 0])
             finally:
-                _adding.discard(id(obj))
+                _adding.discard(_key(obj))
         _show_size(obj)
         for prop, (kind, _, doc, mode_) in QUALITY_PROPERTIES.items():
             if prop not in obj.PropertiesList:
@@ -199,7 +204,7 @@ class RemeshFeature(StatelessProxy):
             return
         properties = parameters.properties()
         if prop == SIZE_BY:
-            if id(obj) not in _adding:
+            if _key(obj) not in _adding:
                 _size_by_changed(obj)
             return
         # A new mode brings its own nu and delta (Section 6.1), as --mode does on the command line.

@@ -114,6 +114,7 @@ def answer_message_box(name, seen):
         return
     seen.append(box.text() if hasattr(box, "text") else box.windowTitle())
     shot(name)
+    box.grab().save(os.path.join(SHOTS, name.replace(".png", "-box.png")))  # a window of its own
     buttons = box.findChildren(QtGui.QPushButton)
     click(buttons[0]) if buttons else box.close()
 
