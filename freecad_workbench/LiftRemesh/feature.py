@@ -74,15 +74,16 @@ def attach_view_provider(obj):
         _view_provider_hook(obj.ViewObject)
 
 
-# In the GUI a recompute of a feature that already has a mesh (after a property edit) runs in the
-# background with progress and Cancel (gui/recompute.py sets this hook: hook(obj, params)); the
-# feature keeps its mesh until the new one is there. Without the GUI, and for a new feature, the
-# recompute computes the mesh before it returns.
+# In the GUI the remesh of a recompute runs with a progress dialog and Cancel (gui/recompute.py sets
+# this hook: hook(obj, params) -> meshing.Result, or None when it failed or was cancelled, which the
+# hook has said in one line). Either way the recompute has its result before execute() returns, as
+# without the GUI: dependent objects recompute on the new mesh and a macro sees it. A feature
+# without a mesh yet (being created) has none to keep: its errors are raised (create_feature).
 _recompute_hook = None
 
 
 def set_recompute_hook(hook):
-    """Sets the callable hook(feature, params) that recomputes a feature in the background."""
+    """Sets the callable hook(feature, params) that remeshes a feature's source in the GUI."""
     global _recompute_hook
     _recompute_hook = hook
 
@@ -220,9 +221,11 @@ class RemeshFeature(StatelessProxy):
             raise ValueError("%s has no source to remesh" % obj.Label)
         params = params_of(obj)
         if _recompute_hook is not None and FreeCAD.GuiUp and obj.Mesh.CountFacets:
-            _recompute_hook(obj, params)  # the mesh follows when the background job ends
-            return
-        result = meshing.remesh_source(obj.Source, **params)
+            result = _recompute_hook(obj, params)
+            if result is None:
+                return  # failed or cancelled: the previous mesh stays (the hook said why)
+        else:
+            result = meshing.remesh_source(obj.Source, **params)
         apply_result(obj, result)
 
 

@@ -119,6 +119,17 @@ def answer_message_box(name, seen):
     click(buttons[0]) if buttons else box.close()
 
 
+def while_recomputing(action, period_ms=50):
+    """Calls action(dialog) from a timer while doc.recompute() waits, each time the progress dialog
+    is shown, until it returns True."""
+    def poll():
+        shown = [d for d in FreeCADGui.getMainWindow().findChildren(QtGui.QProgressDialog) if d.isVisible()]
+        if not (shown and action(shown[0])):
+            QtCore.QTimer.singleShot(period_ms, poll)
+
+    QtCore.QTimer.singleShot(period_ms, poll)
+
+
 def plate(doc):
     """A filleted plate with five holes, as the issue's user tried."""
     import Part
@@ -143,7 +154,6 @@ def run():
         with open(path, encoding="utf-8") as f:
             exec(compile(f.read(), path, "exec"), {"__builtins__": __builtins__}, {})
     FreeCADGui.activateWorkbench("LiftRemeshWorkbench")
-    from LiftRemesh.gui import recompute
     from LiftRemesh.gui import task_panel
 
     panels = []
@@ -227,26 +237,54 @@ def run():
     check(not FreeCADGui.Control.activeDialog(), "Close closes the panel")
     check(not uncaught, "no exception reached the report view")
 
-    # a property edit recomputes in the background with a progress bar in the status bar
+    # a property edit recomputes as FreeCAD's own recomputes do: doc.recompute() returns with the new
+    # mesh, after a modal progress dialog with Cancel
     feature = remeshed[0]
     feature.ViewObject.DisplayMode = "Flat Lines"
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(feature)  # its properties in the property view
     pump(0.3)
     feature.Vertices = 2500
+    seen = []
+
+    def look(dialog):
+        if dialog.value() <= 0:
+            return False
+        seen.append((dialog.value(), dialog.labelText(), dialog.isModal(), fully_visible(dialog)))
+        shot("6-recompute-progress.png")
+        dialog.grab().save(os.path.join(SHOTS, "6-recompute-progress-dialog.png"))  # a window of its own
+        return True
+
+    while_recomputing(look)
+    doc.recompute()
+    check(bool(seen) and seen[0][0] > 0 and feature.Label in seen[0][1] and seen[0][2] and seen[0][3],
+          "the recompute shows a modal progress dialog: %s" % seen)
+    check(near(feature.Mesh.CountPoints, 2500), "doc.recompute() gives the new mesh: %d" % feature.Mesh.CountPoints)
+    check("Touched" not in feature.State, "the feature is up to date")
+
+    # the dialog's Cancel button, clicked: the previous mesh stays, the feature stays touched
+    count, iterations = feature.Mesh.CountPoints, feature.Iterations
+    feature.Iterations = 100000
+    feature.Vertices = 3500
+    clicked = []
+
+    def cancel(dialog):
+        if dialog.value() <= 0:
+            return False
+        click(dialog.findChild(QtGui.QPushButton))
+        clicked.append(True)
+        return True
+
+    while_recomputing(cancel)
     started = time.monotonic()
     doc.recompute()
-    check(time.monotonic() - started < 2.0, "the recompute returns at once")
-    pump(0.3)
-    runner = recompute.recomputer()
-    check(runner.running(), "the recompute runs in the background")
-    wait_until(lambda: not runner.running() or runner.progress is not None and runner.progress.bar.value() > 0,
-               "the recompute's progress")
-    pump(0.3)
-    check(runner.progress is not None and fully_visible(runner.progress.widget), "its progress is in the status bar")
-    shot("6-recompute-progress.png")
-    recompute.wait(TIMEOUT)
-    check(near(feature.Mesh.CountPoints, 2500), "the recompute gives the new mesh: %d" % feature.Mesh.CountPoints)
+    check(clicked and time.monotonic() - started < 60, "Cancel stops the recompute")
+    check(feature.Mesh.CountPoints == count and "Touched" in feature.State,
+          "after Cancel the mesh is the previous one and the feature is touched")
+    feature.Iterations = iterations
+    feature.Vertices = 2500
+    doc.recompute()
+    check("Touched" not in feature.State, "a recompute after the Cancel succeeds")
     FreeCADGui.SendMsgToActiveView("ViewFit")
     FreeCADGui.activeDocument().activeView().saveImage(os.path.join(SHOTS, "7-result-view.png"), 1000, 700, "White")
     pump(1.0)

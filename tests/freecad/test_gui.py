@@ -95,19 +95,17 @@ class GuiTestCase(unittest.TestCase):
         FreeCADGui.Selection.clearSelection()
         self.boxes = MessageBoxes()
         self.panel = None
+        self.finished = False  # set when the test ends: its timers stop
         # exceptions raised in Qt slots (timers, signals) go to sys.excepthook: FreeCAD's report view
         self.uncaught = []
         self.saved_hook = sys.excepthook
         sys.excepthook = lambda kind, value, trace: self.uncaught.append(value)
 
     def tearDown(self):
+        self.finished = True
         if self.panel is not None and self.panel.running():
             self.panel.cancel()
             self.panel.wait(TIMEOUT)
-        from LiftRemesh.gui import recompute
-
-        recompute.recomputer().cancel()
-        recompute.wait(TIMEOUT)
         sys.excepthook = self.saved_hook
         self.boxes.restore()
         FreeCADGui.Selection.clearSelection()
@@ -560,61 +558,141 @@ class ApplyTest(GuiTestCase):
         self.assertEqual(self.uncaught, [])
 
 
+def while_recomputing(test, action, period_ms=50):
+    """Calls action(dialog) from a timer, while doc.recompute() waits, each time LiftRemesh's
+    progress dialog is shown, until it returns True or the test ends (the test's hand during a
+    modal run)."""
+    from PySide import QtCore, QtGui
+
+    def poll():
+        if test.finished:
+            return
+        shown = [d for d in FreeCADGui.getMainWindow().findChildren(QtGui.QProgressDialog) if d.isVisible()]
+        if shown and action(shown[0]):
+            return
+        QtCore.QTimer.singleShot(period_ms, poll)
+
+    QtCore.QTimer.singleShot(period_ms, poll)
+
+
+class Follower:
+    """Proxy of a test object that depends on a remesh feature: its execute() records the point
+    count of the feature's mesh at the time (Points)."""
+
+    @staticmethod
+    def add(doc, feature):
+        obj = doc.addObject("App::FeaturePython", "Follower")
+        obj.addProperty("App::PropertyLink", "Feature")
+        obj.addProperty("App::PropertyInteger", "Points")
+        obj.Proxy = Follower()
+        obj.Feature = feature
+        doc.recompute()
+        return obj
+
+    def execute(self, obj):
+        obj.Points = obj.Feature.Mesh.CountPoints
+
+
 class PropertyEditTest(GuiTestCase):
-    """Issue 34, items 3 to 5: the property view and a recompute after a property edit."""
+    """Issue 34, items 3 to 5: the property view and a recompute after a property edit. The
+    recompute is synchronous, as FreeCAD's own are: a modal progress dialog with Cancel while it
+    runs, the new mesh when doc.recompute() returns."""
 
     def test_a_recompute_shows_progress_and_gives_the_new_mesh(self):
-        from LiftRemesh.gui import recompute
+        from PySide import QtCore, QtGui
 
         block = add_box_with_hole(self.doc)
         feature = self.remesh(block, vertices=500)
-        feature.Vertices = 900
-        start = time.monotonic()
-        self.doc.recompute()
-        self.assertLess(time.monotonic() - start, 2.0)  # the GUI is not held while it runs
-        count = feature.Mesh.CountPoints
-        self.assertAlmostEqual(count, 500, delta=5)  # the previous mesh until the new one is there
+        follower = Follower.add(self.doc, feature)
+        feature.Vertices = 3000
+        feature.Iterations = 300  # a run of about a second or more: long enough for the dialog
         seen = []
-        runner = recompute.recomputer()
 
-        def progress_shown():
-            process_events()
-            widget = runner.progress.widget if runner.progress is not None else None
-            if widget is not None and widget.isVisible() and runner.progress.bar.value() > 0:
-                seen.append((runner.progress.bar.value(), runner.progress.text.text()))
-            return bool(seen) or not runner.running() and time.monotonic() - start > 1.0
+        def record(dialog):
+            seen.append((dialog.value(), dialog.labelText(), dialog.windowModality(), dialog.parent()))
+            return False
 
-        wait_until(progress_shown, "the recompute's progress")
-        self.assertTrue(seen, "no progress shown")
-        self.assertIn(feature.Label, seen[0][1])
-        recompute.wait(TIMEOUT)
-        self.assertAlmostEqual(feature.Mesh.CountPoints, 900, delta=9)
+        while_recomputing(self, record)
+        self.doc.recompute()
+        self.assertAlmostEqual(feature.Mesh.CountPoints, 3000, delta=30)  # the new mesh, at once
+        self.assertEqual(follower.Points, feature.Mesh.CountPoints)  # a dependent saw it in the same pass
         self.assertNotIn("Touched", feature.State)
-        self.assertFalse(runner.progress.widget.isVisible())
+        self.assertTrue(seen, "no progress dialog shown")
+        value, label, modality, parent = seen[-1]
+        self.assertGreater(value, 0)
+        self.assertIn(feature.Label, label)
+        self.assertEqual(modality, QtCore.Qt.WindowModal)  # the document cannot be edited meanwhile
+        self.assertIs(parent, FreeCADGui.getMainWindow())
+        self.assertFalse([d for d in FreeCADGui.getMainWindow().findChildren(QtGui.QProgressDialog) if d.isVisible()])
+        process_events()
         self.assertIn("recomputed", FreeCADGui.getMainWindow().statusBar().currentMessage())
         self.assertEqual(self.uncaught, [])
 
     def test_a_recompute_can_be_cancelled_and_keeps_the_mesh(self):
-        from LiftRemesh.gui import recompute
+        from PySide import QtGui
 
         block = add_box_with_hole(self.doc)
         feature = self.remesh(block, vertices=500)
         count = feature.Mesh.CountPoints
         feature.Iterations = 100000
         feature.Vertices = 3000
-        self.doc.recompute()
-        runner = recompute.recomputer()
-        wait_until(lambda: runner.running() and list(runner.runs.values())[0].job.progress.stage == "optimize",
-                   "the optimisation")
-        runner.progress.cancel.click()  # the Cancel button beside the progress bar
-        recompute.wait(TIMEOUT)
+        warnings = []
+        clicked = []
+
+        def cancel(dialog):
+            if dialog.value() <= 0:
+                return False
+            clicked.append(dialog.value())
+            dialog.findChild(QtGui.QPushButton).click()  # its Cancel button
+            return True
+
+        while_recomputing(self, cancel)
+        started = time.monotonic()
+        with ConsoleErrors(warnings, "PrintWarning"):
+            self.doc.recompute()
+        self.assertTrue(clicked)
+        self.assertLess(time.monotonic() - started, 60)  # 100000 iterations were not run
         self.assertEqual(feature.Mesh.CountPoints, count)
         self.assertIn("Touched", feature.State)  # still to be recomputed
+        cancelled = [w for w in warnings if "cancelled" in w]
+        self.assertEqual(len(cancelled), 1, warnings)
+        self.assertEqual(cancelled[0].count("\n"), 1)
+        process_events()
         self.assertIn("cancelled", FreeCADGui.getMainWindow().statusBar().currentMessage())
+        self.assertEqual(self.uncaught, [])
+
+    def test_a_recompute_asked_for_during_one_starts_no_nested_run(self):
+        block = add_box_with_hole(self.doc)
+        feature = self.remesh(block, vertices=500)
+        other = self.remesh(block, vertices=400)
+        feature.Vertices = 1500
+        feature.Iterations = 300
+        other.Vertices = 450
+        counts = (feature.Mesh.CountPoints, other.Mesh.CountPoints)
+        nested = []
+
+        def ask_again(dialog):
+            for call in (self.doc.recompute, other.recompute):  # FreeCAD refuses the first, we the second
+                try:
+                    nested.append(call())
+                except Exception as error:
+                    nested.append(error)
+            return True
+
+        while_recomputing(self, ask_again)
+        errors = []
+        with ConsoleErrors(errors):
+            self.doc.recompute()
+        self.assertEqual(len(nested), 2, nested)  # whatever FreeCAD says to the nested doc.recompute()
+        refused = [e for e in errors if "refused" in e]
+        self.assertEqual(len(refused), 1, errors)
+        self.assertIn(other.Label, refused[0])
+        self.assertAlmostEqual(feature.Mesh.CountPoints, 1500, delta=15)
+        self.assertNotEqual(feature.Mesh.CountPoints, counts[0])
+        self.assertAlmostEqual(other.Mesh.CountPoints, 450, delta=5)  # the outer recompute reached it too
+        self.assertEqual(self.uncaught, [])
 
     def test_a_recompute_error_is_one_line_and_keeps_the_mesh(self):
-        from LiftRemesh.gui import recompute
-
         block = add_box_with_hole(self.doc)
         feature = self.remesh(block, vertices=500)
         count = feature.Mesh.CountPoints
@@ -624,7 +702,6 @@ class PropertyEditTest(GuiTestCase):
         feature.EdgeLength = 0.001
         with observer:
             self.doc.recompute()
-            recompute.wait(TIMEOUT)
         self.assertEqual(feature.Mesh.CountPoints, count)
         self.assertEqual(len(errors), 1, errors)
         self.assertEqual(errors[0].count("\n"), 1)  # one line, no traceback
@@ -652,16 +729,18 @@ class PropertyEditTest(GuiTestCase):
 
 
 class ConsoleErrors:
-    """Records FreeCAD's console errors (the report view's red lines) while in a with block."""
+    """Records FreeCAD's console errors (the report view's red lines), or the lines of another
+    Console printer (`kind`), while in a with block."""
 
-    def __init__(self, errors):
+    def __init__(self, errors, kind="PrintError"):
         self.errors = errors
+        self.kind = kind
 
     def __enter__(self):
-        self.saved = FreeCAD.Console.PrintError
-        FreeCAD.Console.PrintError = lambda text: (self.errors.append(text), self.saved(text))
+        self.saved = getattr(FreeCAD.Console, self.kind)
+        setattr(FreeCAD.Console, self.kind, lambda text: (self.errors.append(text), self.saved(text)))
         return self
 
     def __exit__(self, *exc):
-        FreeCAD.Console.PrintError = self.saved
+        setattr(FreeCAD.Console, self.kind, self.saved)
         return False

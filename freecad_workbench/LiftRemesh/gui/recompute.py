@@ -1,186 +1,154 @@
-"""Recomputing a remesh feature in the GUI after a property edit, as the task panel runs a remesh:
-in a worker thread (gui/job.py), with a progress bar and a Cancel button in the main window's
-status bar, so FreeCAD stays responsive during a long run.
+"""Recomputing a remesh feature in the GUI: synchronous, as FreeCAD's own long operations are, with
+a progress dialog and a Cancel button.
 
-FreeCAD's recompute calls the feature's execute(), which hands the work to request() and returns
-at once: the feature keeps its previous mesh until the new one is there. Then (main thread) the
-mesh and quality properties are set and the feature is clean. A failure or a Cancel leaves the
-previous mesh, prints one line in the report view (no traceback), says it in the status bar and
-marks the feature touched, as a failed recompute does. A new edit while a run goes on cancels it
-and starts again. Without the GUI (FreeCADCmd) no hook is set and a recompute computes in place.
-Macros and tests call wait() to have the result before they go on.
+FreeCAD's recompute calls the feature's execute(), which calls remesh() here: the remesh runs in
+the worker thread of a RemeshJob (gui/job.py) while remesh() waits, processing GUI events so the
+window repaints. A window-modal QProgressDialog of the main window (the stage, the percentage,
+Cancel) shows when the run lasts longer than MIN_DURATION_MS; its modality keeps the user from
+editing the document meanwhile. execute() sets the new mesh before it returns, so the objects that
+depend on the feature recompute on it in the same recompute and a macro sees it once
+doc.recompute() has returned, as in FreeCADCmd.
+
+A failure or a Cancel leaves the previous mesh, prints one line in the report view (an exception
+raised in execute() would print a traceback), says it in the status bar and leaves the feature
+touched, to be recomputed. A recompute asked for while a run goes on (a timer, another document)
+starts no nested run: it is refused the same way.
 """
 import time
 
 import FreeCAD
 from PySide import QtCore, QtGui
 
-from .. import feature as remesh_feature
 from .. import meshing
 from .. import parameters
 from . import common
 from . import job as remesh_job
 
-POLL_MS = 100
+MIN_DURATION_MS = 500  # a shorter run shows no dialog (as QProgressDialog's minimumDuration)
+POLL_S = 0.05  # how long the wait blocks between two rounds of GUI events
+STEPS = 1000  # the dialog's range
 
 
-class Run:
-    """One feature's background recompute: which feature, its job, when it started."""
+class AfterRecompute:
+    """What waits for the end of the document recompute a feature's execute() ran in (a document
+    observer's slotRecomputedDocument): FreeCAD purges the touched flag of every object whose
+    execute() returned, so a failed feature is touched again then, and it clears the status bar
+    when it ends, so a message is shown then. Outside a document recompute (obj.recompute()) both
+    happen at once."""
 
-    def __init__(self, obj, job):
-        self.doc_name = obj.Document.Name
-        self.name = obj.Name
-        self.label = obj.Label
-        self.job = job
-        self.started = time.monotonic()
+    def __init__(self):
+        self.keys = set()  # (document name, object name) to touch
+        self.messages = []  # (document name, status bar message)
+        FreeCAD.addDocumentObserver(self)
 
-    def feature(self):
-        """The feature, or None when it or its document is gone."""
-        doc = FreeCAD.listDocuments().get(self.doc_name)
-        return doc.getObject(self.name) if doc is not None else None
+    def touch(self, obj):
+        obj.touch()
+        if obj.Document.Recomputing:
+            self.keys.add((obj.Document.Name, obj.Name))
+
+    def show_status(self, obj, message):
+        if obj.Document.Recomputing:
+            self.messages.append((obj.Document.Name, message))
+        else:
+            common.show_status(message)
+
+    def slotRecomputedDocument(self, doc):
+        for key in [key for key in self.keys if key[0] == doc.Name]:
+            self.keys.discard(key)
+            obj = doc.getObject(key[1])
+            if obj is not None:
+                obj.touch()
+        for message in [m for name, m in self.messages if name == doc.Name]:
+            QtCore.QTimer.singleShot(0, lambda text=message: common.show_status(text))
+        self.messages = [(name, m) for name, m in self.messages if name != doc.Name]
 
 
-class StatusProgress:
-    """A progress bar, a status text and a Cancel button in the main window's status bar, shown
-    while a recompute runs. Keeps the status bar's Python wrapper alive as long as its widgets:
-    when a parent's wrapper goes, PySide invalidates the wrappers of the children it knows."""
+class ProgressDialog:
+    """The modal progress dialog of one run, shown after MIN_DURATION_MS; Cancel (or closing it)
+    asks the job to stop."""
 
-    def __init__(self, on_cancel):
-        self.status_bar = common.main_window().statusBar()
-        self.widget = QtGui.QWidget()
-        layout = QtGui.QHBoxLayout(self.widget)
-        layout.setContentsMargins(0, 0, 0, 0)
-        self.text = QtGui.QLabel()
-        self.bar = QtGui.QProgressBar()
-        self.bar.setRange(0, 1000)
-        self.bar.setMaximumWidth(200)
-        self.bar.setFormat("%p%")
-        self.cancel = QtGui.QToolButton()
-        self.cancel.setText("Cancel")
-        self.cancel.setToolTip("Stop the remesh: the mesh keeps its previous triangles")
-        self.cancel.clicked.connect(on_cancel)
-        for widget in (self.text, self.bar, self.cancel):
-            layout.addWidget(widget)
-        self.status_bar.addPermanentWidget(self.widget)
-        self.widget.hide()
+    def __init__(self, label, on_cancel):
+        self.dialog = QtGui.QProgressDialog(common.main_window())
+        self.dialog.setWindowTitle(common.TITLE)
+        self.dialog.setWindowModality(QtCore.Qt.WindowModal)
+        self.dialog.setLabelText("Recomputing %s" % label)
+        self.dialog.setCancelButtonText("Cancel")
+        self.dialog.setRange(0, STEPS)
+        self.dialog.setAutoClose(False)
+        self.dialog.setAutoReset(False)
+        self.dialog.setMinimumDuration(MIN_DURATION_MS)
+        self.dialog.canceled.connect(on_cancel)
+        self.dialog.setValue(0)  # starts the minimum duration
 
     def show(self, fraction, text):
-        self.bar.setValue(int(round(self.bar.maximum() * fraction)))
-        self.text.setText(text)
-        self.widget.show()
+        if self.dialog.wasCanceled():
+            return  # Cancel hid the dialog; setValue() would show it again
+        self.dialog.setLabelText(text)
+        self.dialog.setValue(max(1, int(round(STEPS * fraction))))
 
-    def hide(self, message=None):
-        self.widget.hide()
-        if message:
-            common.show_status(message)
+    def close(self):
+        self.dialog.canceled.disconnect()
+        self.dialog.reset()  # stops the timer that would show it after the minimum duration
+        self.dialog.hide()
+        self.dialog.deleteLater()
 
 
 class Recomputer:
-    """The background recomputes of remesh features (one at a time per feature)."""
+    """Runs the remesh of one feature's recompute at a time, waiting for it with the GUI alive."""
 
     def __init__(self):
-        self.runs = {}  # (document name, feature name) -> Run
-        self.progress = None
-        self.timer = QtCore.QTimer()
-        self.timer.setInterval(POLL_MS)
-        self.timer.timeout.connect(self.poll)
+        self.run = None  # (label, job) of the running recompute: refuses a nested one
+        self.after = AfterRecompute()
 
-    def request(self, obj, params):
-        """The feature's execute() asks for a new mesh with `params`: started once the recompute
-        has returned (the source's tessellation must not run inside it)."""
-        key = (obj.Document.Name, obj.Name)
-        QtCore.QTimer.singleShot(0, lambda: self.start(key, params))
-
-    def start(self, key, params):
-        """Starts the job for a feature (cancelling its running one). Errors: see fail()."""
-        doc = FreeCAD.listDocuments().get(key[0])
-        obj = doc.getObject(key[1]) if doc is not None else None
-        if obj is None:
-            return
-        previous = self.runs.pop(key, None)
-        if previous is not None:
-            previous.job.cancel()  # its result is dropped: this run replaces it
+    def remesh(self, obj, params):
+        """The new mesh of a feature (a meshing.Result), computed with progress and Cancel; None
+        after a failure, a Cancel or a refused nested request (said in one line, obj touched)."""
+        if self.run is not None:
+            return self.fail(obj, "recompute refused: the recompute of %s is still running" % self.run[0])
+        started = time.monotonic()
         try:
             values = parameters.resolve(params)
             parameters.check(values, meshing.source_area(obj.Source))
-            mesh = meshing.input_mesh(obj.Source, values)
+            job = remesh_job.RemeshJob([meshing.input_mesh(obj.Source, values)], params)
         except Exception as error:
-            self.fail(obj, error)
-            return
-        run = Run(obj, remesh_job.RemeshJob([mesh], params))
-        self.runs[key] = run
-        run.job.start()
-        self.poll()
-        self.timer.start()
-
-    def running(self):
-        """True while a background recompute runs."""
-        return bool(self.runs)
-
-    def cancel(self):
-        """Asks every running recompute to stop."""
-        for run in self.runs.values():
-            run.job.cancel()
-
-    def wait(self, timeout=None):
-        """Processes GUI events until no recompute runs, including the ones a recompute in the
-        event queue is about to start (for macros and tests)."""
-        deadline = None if timeout is None else time.monotonic() + timeout
-        QtGui.QApplication.processEvents()  # starts the requested runs
-        while self.runs:
-            if deadline is not None and time.monotonic() > deadline:
-                raise TimeoutError("LiftRemesh: the recompute did not end within %s s" % timeout)
-            for run in list(self.runs.values()):
-                run.job.join(POLL_MS / 1000.0)
-            QtGui.QApplication.processEvents()
-            self.poll()
-
-    def poll(self):
-        """Timer slot: shows the progress of the latest run; ends the runs that have finished."""
-        for key, run in list(self.runs.items()):
-            if run.job.finished():
-                del self.runs[key]
-                self.ended(run)
-        if not self.runs:
-            self.timer.stop()
-            return
-        run = list(self.runs.values())[-1]
-        progress = run.job.progress
-        text = "%s  (%.0f s)" % (progress.text([run.label]), time.monotonic() - run.started)
-        self.status().show(progress.fraction(1), "Recomputing " + text)
-
-    def status(self):
-        if self.progress is None:
-            self.progress = StatusProgress(self.cancel)
-        return self.progress
-
-    def ended(self, run):
-        """A finished run: the new mesh, or the failure or cancel reported."""
-        obj = run.feature()
-        if obj is None:
-            self.status().hide()
-            return
-        job = run.job
+            return self.fail(obj, "recompute failed, the mesh is the previous one: %s" % common.describe_error(error))
+        self.run = (obj.Label, job)
+        dialog = ProgressDialog(obj.Label, job.cancel)
+        try:
+            job.start()
+            self.wait(job, dialog, obj.Label)
+        finally:
+            dialog.close()
+            self.run = None
         if job.cancel_requested or job.cancelled():
-            message = "%s: recompute cancelled, the mesh is the previous one" % obj.Label
-            FreeCAD.Console.PrintWarning("%s: %s\n" % (common.TITLE, message))
-            obj.touch()
-            self.status().hide(message)
-        elif job.error is not None:
-            self.fail(obj, job.error)
-        else:
-            result = job.results[0]
-            remesh_feature.apply_result(obj, result)
-            obj.purgeTouched()
-            meshing.print_warnings(result, obj.Label)
-            self.status().hide("%s recomputed in %.1f s" % (obj.Label, time.monotonic() - run.started))
+            return self.fail(obj, "recompute cancelled, the mesh is the previous one", FreeCAD.Console.PrintWarning)
+        if job.error is not None:
+            return self.fail(obj, "recompute failed, the mesh is the previous one: %s" % common.describe_error(job.error))
+        result = job.results[0]
+        meshing.print_warnings(result, obj.Label)
+        self.after.show_status(obj, "%s recomputed in %.1f s" % (obj.Label, time.monotonic() - started))
+        return result
 
-    def fail(self, obj, error):
+    @staticmethod
+    def wait(job, dialog, label):
+        """Processes GUI events until the job has ended, showing its progress. User input goes
+        only to the dialog once it is shown (modal); before, none is processed."""
+        while not job.finished():
+            job.join(POLL_S)
+            progress = job.progress
+            dialog.show(progress.fraction(1), "Recomputing " + progress.text([label]))
+            flags = QtCore.QEventLoop.AllEvents
+            if not dialog.dialog.isVisible():
+                flags = QtCore.QEventLoop.ExcludeUserInputEvents
+            QtGui.QApplication.processEvents(flags)
+
+    def fail(self, obj, message, printer=None):
         """One line in the report view and the status bar; the feature keeps its mesh, touched."""
-        message = "%s: recompute failed, the mesh is the previous one: %s" % (obj.Label, common.describe_error(error))
-        FreeCAD.Console.PrintError("%s: %s\n" % (common.TITLE, message))
-        obj.touch()
-        self.status().hide(message)
+        line = "%s: %s" % (obj.Label, message)
+        (printer or FreeCAD.Console.PrintError)("%s: %s\n" % (common.TITLE, line))
+        self.after.show_status(obj, line)
+        self.after.touch(obj)
+        return None
 
 
 _recomputer = None
@@ -194,11 +162,6 @@ def recomputer():
     return _recomputer
 
 
-def request(obj, params):
-    """The feature's recompute hook (feature.set_recompute_hook)."""
-    recomputer().request(obj, params)
-
-
-def wait(timeout=None):
-    """Waits (processing GUI events) until every background recompute has ended."""
-    recomputer().wait(timeout)
+def remesh(obj, params):
+    """The feature's recompute hook (feature.set_recompute_hook): see Recomputer.remesh()."""
+    return recomputer().remesh(obj, params)
