@@ -93,9 +93,9 @@ def snap_points_to_shape(points, triangles, shape):
     """Moves points onto the shape's corners, free edges and faces (module doc). Returns (new list
     of points, counts: {"vertex", "edge", "face", "undone", "boundary_missed"}); `points` itself
     is not changed."""
-    edge_use = _edge_use(triangles)
-    lengths = _local_lengths(points, edge_use)
-    boundary = sorted({i for edge, n in edge_use.items() if n == 1 for i in edge})
+    uses = edge_use(triangles)
+    lengths = local_lengths(points, uses)
+    boundary = sorted({i for edge, n in uses.items() if n == 1 for i in edge})
     free_edges, corners = free_edges_and_corners(shape)
 
     targets = {}  # node -> (new position, kind)
@@ -104,13 +104,13 @@ def snap_points_to_shape(points, triangles, shape):
         if node is not None and (points[node] - corner.Point).Length <= VERTEX_SNAP * lengths[node]:
             targets[node] = (FreeCAD.Vector(corner.Point), "vertex")
     if free_edges:
-        _snap_to(_compound(free_edges), [i for i in boundary if i not in targets],
-                 points, lengths, EDGE_SNAP, "edge", targets)
+        snap_to(_compound(free_edges), [i for i in boundary if i not in targets],
+                points, lengths, EDGE_SNAP, "edge", targets)
     if shape.Faces:
-        _snap_to(_compound(shape.Faces), [i for i in range(len(points)) if i not in targets],
-                 points, lengths, FACE_SNAP, "face", targets)
+        snap_to(_compound(shape.Faces), [i for i in range(len(points)) if i not in targets],
+                points, lengths, FACE_SNAP, "face", targets)
 
-    undone = _undo_folding_moves(points, triangles, targets)
+    undone = undo_folding_moves(points, triangles, targets)
     moved = list(points)
     counts = {"vertex": 0, "edge": 0, "face": 0, "undone": len(undone)}
     for node, (position, kind) in targets.items():
@@ -148,7 +148,7 @@ def free_edges_and_corners(shape):
     return free_edges, corners
 
 
-def _snap_to(target_shape, nodes, points, lengths, fraction, kind, targets):
+def snap_to(target_shape, nodes, points, lengths, fraction, kind, targets):
     """Records in `targets` the nearest point of target_shape for each of `nodes` closer than
     fraction * its local edge length."""
     import Part
@@ -164,7 +164,7 @@ def _snap_to(target_shape, nodes, points, lengths, fraction, kind, targets):
             targets[node] = (FreeCAD.Vector(pairs[0][0]), kind)
 
 
-def _undo_folding_moves(points, triangles, targets):
+def undo_folding_moves(points, triangles, targets):
     """Drops from `targets` the moves of every triangle they would fold or collapse, until none
     does. Returns the dropped nodes."""
     undone = set()
@@ -187,7 +187,7 @@ def _undo_folding_moves(points, triangles, targets):
         undone |= bad
 
 
-def _edge_use(triangles):
+def edge_use(triangles):
     """{(i, j) with i < j: number of triangles using that edge}."""
     use = {}
     for a, b, c in triangles:
@@ -197,7 +197,7 @@ def _edge_use(triangles):
     return use
 
 
-def _local_lengths(points, edge_use):
+def local_lengths(points, edge_use):
     """Mean length of the mesh edges at each point (0 for a point no triangle uses)."""
     total = [0.0] * len(points)
     count = [0] * len(points)
@@ -317,6 +317,21 @@ def shell_mesh_label(mesh_obj):
     label for a remesh feature, else the mesh's own."""
     source = getattr(mesh_obj, "Source", None)
     return "%s_ShellMesh" % (source.Label if source is not None else mesh_obj.Label)
+
+
+def active_analysis(doc):
+    """FEM's active analysis when it is in `doc` (FemGui.getActiveAnalysis, GUI only), else None."""
+    if not FreeCAD.GuiUp:
+        return None
+    try:
+        import FemGui
+
+        analysis = FemGui.getActiveAnalysis()
+    except Exception:  # FEM not installed or not loaded: no analysis
+        return None
+    if analysis is None or analysis.Document is not doc:
+        return None
+    return analysis
 
 
 def add_to_analysis(analysis, fem_obj, thickness=None):

@@ -199,21 +199,21 @@ def onto_shape(points, triangles, shape, along=None):
     {point: set of the indices in shape.Edges of the edges it was put on})."""
     moved, counts = fem.snap_points_to_shape(points, triangles, shape)
     free_edges, _ = fem.free_edges_and_corners(shape)
-    lengths = fem._local_lengths(moved, fem._edge_use(triangles))
+    lengths = fem.local_lengths(moved, fem.edge_use(triangles))
     candidates = {}  # point -> [(position, edge index)]
     for index, edge in enumerate(shape.Edges):
         if edge.Degenerated or any(edge.isSame(f) for f in free_edges):
             continue
         nodes = range(len(moved)) if along is None else [n for n, edges in along.items() if index in edges]
         found = {}
-        fem._snap_to(edge, nodes, moved, lengths, CREASE_SNAP, index, found)
+        fem.snap_to(edge, nodes, moved, lengths, CREASE_SNAP, index, found)
         for node, (position, _) in found.items():
             candidates.setdefault(node, []).append((position, index))
     targets = {}
     for node, options in candidates.items():
         nearest = min(options, key=lambda o: (o[0] - moved[node]).Length)[0]
         targets[node] = (nearest, "crease")
-    fem._undo_folding_moves(moved, triangles, targets)
+    fem.undo_folding_moves(moved, triangles, targets)
     moved = list(moved)
     on_edges = {}
     for node, (position, _) in targets.items():
@@ -271,16 +271,6 @@ def faceted_solid(points, triangles):
 
 # ----- document -----------------------------------------------------------------------------------
 
-def active_analysis(doc):
-    """FEM's active analysis when it belongs to `doc` (GUI only), else None."""
-    if not FreeCAD.GuiUp:
-        return None
-    import FemGui
-
-    analysis = FemGui.getActiveAnalysis()
-    return analysis if analysis is not None and analysis.Document == doc else None
-
-
 def make_fem_solid(doc, mesh_obj, order=2, quality=QUALITY, name=None, shape=None, analysis=None,
                    progress=None, faces=True):
     """Adds a Fem::FemMeshObject of tetrahedra (tet10, tet4 with order=1) filling the closed mesh of
@@ -308,7 +298,7 @@ def add_fem_solid(doc, mesh_obj, result, name=None, analysis=None, shape_obj=Non
     nodes were put on): FEM reads a mesh's shape from it (femmesh/meshsetsgetter.py, as for its
     own Gmsh mesh objects), e.g. to tell the solids of several materials apart."""
     if analysis is None:
-        analysis = active_analysis(doc)
+        analysis = fem.active_analysis(doc)
     fem_mesh = result.fem_mesh()
     _report(mesh_obj.Label, fem_mesh, result)
     with document.document_change(doc, TRANSACTION):

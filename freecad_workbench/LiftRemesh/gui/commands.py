@@ -87,7 +87,7 @@ class CommandFemShell:
         if doc is None or not meshes:
             common.report_error("Select one or more mesh objects to make FEM shell meshes of.")
             return
-        analysis = active_analysis(doc)
+        analysis = fem.active_analysis(doc)
         added = []
         try:
             with document.document_change(doc, "FEM shell mesh"):
@@ -110,19 +110,6 @@ class CommandFemShell:
             message += " to %s%s" % (analysis.Label, " with the shell thickness %s" % ", ".join(extra) if extra else "")
         FreeCAD.Console.PrintMessage("LiftRemesh: %s\n" % message)
         common.show_status(message)
-
-
-def active_analysis(doc):
-    """FEM's active analysis when it is in `doc` (FemGui.getActiveAnalysis), else None."""
-    try:
-        import FemGui
-
-        analysis = FemGui.getActiveAnalysis()
-    except Exception:  # FEM not installed or not loaded: no analysis
-        return None
-    if analysis is None or analysis.Document is not doc:
-        return None
-    return analysis
 
 
 FreeCADGui.addCommand(REMESH, CommandRemesh())
