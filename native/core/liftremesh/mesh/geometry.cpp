@@ -13,6 +13,11 @@ Eigen::Vector3d triangle_normal(const Eigen::Vector3d& a, const Eigen::Vector3d&
     return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
+bool zero_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    return !((b - a).cross(c - a).norm() > 1e-12 * longest2);
+}
+
 double triangle_kappa(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     const double l1 = (b - c).norm(), l2 = (c - a).norm(), l3 = (a - b).norm();
     const double denom = l1 * l2 * l3 * (l1 + l2 + l3);

@@ -40,6 +40,10 @@ inline bool tangent_basis(const Eigen::Matrix<double, D, 1>& x1, const Eigen::Ma
 //! Unit normal of a 3D triangle (zero vector if degenerate).
 Eigen::Vector3d triangle_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+//! Whether a 3D triangle has zero area up to rounding: |cross| at most 1e-12 times its longest
+//! side squared (an angle of 1e-12 radians is noise, not a shape), or a non-finite cross product.
+bool zero_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 //! Aspect ratio kappa = 4 sin a sin b sin c / (sin a + sin b + sin c) (Eq. 26): 1 for an
 //! equilateral triangle, 0 for a degenerate one. Evaluated from the edge lengths l1, l2, l3 and
 //! the area A as 16 A^2 / (l1 l2 l3 (l1 + l2 + l3)), the same quantity.

@@ -2,6 +2,7 @@
 
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/orientation.h"
 
 #include <algorithm>
 #include <array>
@@ -19,13 +20,6 @@ namespace {
 
 using Tri = std::array<int32_t, 3>;
 
-// Whether triangle t traverses the edge a -> b (as opposed to b -> a or not at all).
-bool traverses(const Tri& t, int32_t a, int32_t b) {
-    for (int j = 0; j < 3; ++j)
-        if (t[j] == a && t[(j + 1) % 3] == b) return true;
-    return false;
-}
-
 // The triangle soup being repaired: triangles are only ever removed (alive = false) or
 // reoriented, never added, so every loop below runs a bounded number of times.
 class Repairer {
@@ -38,20 +32,12 @@ public:
         reversed_.assign(tris_.size(), 0);
     }
 
-    // Triangles with a repeated index, or whose area is zero up to rounding (|cross| below
-    // 1e-12 times the longest edge squared: an angle of 1e-12 radians is noise, not a shape).
+    // Triangles with a repeated index, or whose area is zero up to rounding (zero_area, geometry.h).
     long remove_degenerate() {
         long removed = 0;
         for (size_t f = 0; f < tris_.size(); ++f) {
             const Tri& t = tris_[f];
-            bool degenerate = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-            if (!degenerate) {
-                const Eigen::Vector3d a = p(t[0]), b = p(t[1]), c = p(t[2]);
-                const double longest2 =
-                    std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-                degenerate = !((b - a).cross(c - a).norm() > 1e-12 * longest2);
-            }
-            if (degenerate) {
+            if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || zero_area(p(t[0]), p(t[1]), p(t[2]))) {
                 alive_[f] = 0;
                 ++removed;
             }
@@ -149,52 +135,12 @@ public:
         return removed;
     }
 
-    // Orients every connected component (connected through edges with exactly two triangles)
-    // consistently by breadth-first search, then keeps the orientation that the larger area of
-    // the component already had. On a non-orientable component the BFS tree decides and some
-    // edges stay inconsistent: remove_orientation_conflicts() deals with them.
+    // Orients every connected component consistently (orient_components, orientation.h). On a
+    // non-orientable component some edges stay inconsistent: remove_orientation_conflicts()
+    // deals with them.
     void orient() {
-        build_edge_index();
-        const size_t n = tris_.size();
-        std::vector<int> component(n, -1);
-        std::vector<char> reverse(n, 0);
-        std::vector<int> members;
-        std::deque<int> queue;
-        std::vector<int> live;
-        int next_component = 0;
-        for (size_t seed = 0; seed < n; ++seed) {
-            if (!alive_[seed] || component[seed] >= 0) continue;
-            members.clear();
-            component[seed] = next_component;
-            queue.push_back(static_cast<int>(seed));
-            while (!queue.empty()) {
-                const int t = queue.front();
-                queue.pop_front();
-                members.push_back(t);
-                for (int j = 0; j < 3; ++j) {
-                    const int32_t a = tris_[t][j], b = tris_[t][(j + 1) % 3];
-                    live_on(find_edge(edge_key(a, b)), live);
-                    if (live.size() != 2) continue;
-                    const int u = live[0] == t ? live[1] : live[0];
-                    if (component[u] >= 0) continue;
-                    component[u] = next_component;
-                    // t, once reoriented, runs a -> b iff it is not reversed; u must then run b -> a.
-                    const bool t_ab = !reverse[t];
-                    const bool u_ab = traverses(tris_[u], a, b);
-                    reverse[u] = (u_ab == t_ab) ? 1 : 0;
-                    queue.push_back(u);
-                }
-            }
-            double kept_area = 0.0, reversed_area = 0.0;
-            for (int t : members) (reverse[t] ? reversed_area : kept_area) += area(t);
-            const bool invert = reversed_area > kept_area;
-            for (int t : members) {
-                if (static_cast<bool>(reverse[t]) == invert) continue;
-                std::swap(tris_[t][1], tris_[t][2]);
-                reversed_[t] ^= 1;
-            }
-            ++next_component;
-        }
+        const std::vector<char> turned = orient_components(points_, tris_, alive_);
+        for (size_t f = 0; f < tris_.size(); ++f) reversed_[f] ^= turned[f];
     }
 
     // After orient(), an edge whose two triangles still run the same way closes a non-orientable
