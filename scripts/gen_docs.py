@@ -51,9 +51,14 @@ QUALITY = {
 }
 
 FIELDS = {
-    "input": "quality of the input as read (exactly equal vertices welded, degenerate triangles and "
-             "facets listed twice dropped): an object with the keys below",
+    "input": "quality of the input once cleaned (exactly equal vertices welded, the facets counted by "
+             "the three `input_*` fields dropped or turned): an object with the keys below",
     "output": "quality of the result: an object with the same keys",
+    "input_duplicates_removed": "facets of the input dropped as repeats of another, in either winding "
+                                "(the two sides of a two-sided sheet are kept; docs/design.md)",
+    "input_degenerate_removed": "facets of the input dropped as degenerate: a repeated vertex, or zero "
+                                "area where the removal leaves no side open",
+    "input_facets_turned": "facets of the input turned to agree with their neighbours' winding",
     "bbox_diagonal": "the input's bounding-box diagonal, in input units",
     "hausdorff_relative": "two-sided Hausdorff distance between input and output over `bbox_diagonal`: "
                           "exact point-to-triangle distances from 100k points a side (the vertices, then "

@@ -117,6 +117,11 @@ class CrackedSphereReport(unittest.TestCase):
         self.assertNotIn("parts remeshed", html)
         html = report_view.report_html(dict(self.report, parts=3))
         self.assertIn("3 parts remeshed one by one", html)
+        self.assertNotIn("facet(s) of the source", html)
+        html = report_view.report_html(dict(self.report, input_duplicates_removed=10, input_degenerate_removed=3,
+                                            input_facets_turned=52))
+        self.assertIn("10 repeated facet(s) of the source dropped, 3 degenerate facet(s) of the source dropped, "
+                      "52 facet(s) of the source turned", html)
 
 
 class SelfIntersectionReport(unittest.TestCase):

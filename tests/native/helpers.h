@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -112,6 +113,57 @@ inline Mesh joined(const Mesh& a, const Mesh& b) {
     Mesh both = a;
     liftremesh::append(both, b);
     return both;
+}
+
+//! The defects of a careless STL export (carelessly_exported): which, and how many.
+struct CarelessExport {
+    int turn_every = 3;           //!< every k-th facet turned (0: each with probability 1/3, seeded)
+    int repeats = 10;             //!< facets written twice, right after themselves: every other one
+                                  //!< the second time the other way round
+    int zero_area = 3;            //!< zero-area facets added: over a side (a, b) of a random facet, (a, b, m)
+                                  //!< with a new vertex m at the side's midpoint, or (a, b, b)
+    std::uint64_t seed = 1;       //!< which facets repeat, carry the zero-area ones (and turn, if random)
+    long turned = 0;              //!< out: facets turned (of the originals)
+};
+
+//! `mesh` as a careless STL export writes it (CarelessExport, seeded): facets turned, repeated
+//! (some reversed) and zero-area facets added. The originals keep their order and come first in
+//! each repeat, so that a cleaning that keeps the first listed of each facet gives back `mesh`'s
+//! facets (their corners maybe rotated) with `what.turned` of them turned back.
+inline Mesh carelessly_exported(const Mesh& mesh, CarelessExport& what) {
+    std::mt19937_64 rng(what.seed);
+    const long n = static_cast<long>(mesh.triangles.rows());
+    std::vector<Eigen::Vector3d> points;
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) points.push_back(mesh.points.row(i).transpose());
+    std::vector<std::array<int32_t, 3>> facets;
+    std::vector<long> order(static_cast<size_t>(n));
+    std::iota(order.begin(), order.end(), 0L);
+    std::shuffle(order.begin(), order.end(), rng);
+    const std::vector<long> repeated(order.begin(), order.begin() + std::min<long>(what.repeats, n));
+    std::shuffle(order.begin(), order.end(), rng);
+    const std::vector<long> carriers(order.begin(), order.begin() + std::min<long>(what.zero_area, n));
+    std::bernoulli_distribution third(1.0 / 3.0);
+    what.turned = 0;
+    for (long f = 0; f < n; ++f) {
+        std::array<int32_t, 3> t = {mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)};
+        if (what.turn_every > 0 ? f % what.turn_every == 0 : third(rng)) {
+            std::swap(t[1], t[2]);
+            ++what.turned;
+        }
+        facets.push_back(t);
+        const auto r = std::find(repeated.begin(), repeated.end(), f);
+        if (r != repeated.end()) facets.push_back((r - repeated.begin()) % 2 ? std::array<int32_t, 3>{t[0], t[2], t[1]} : t);
+        const auto z = std::find(carriers.begin(), carriers.end(), f);
+        if (z != carriers.end()) {
+            if ((z - carriers.begin()) % 2 == 0) {
+                points.push_back(0.5 * (points[t[0]] + points[t[1]]));
+                facets.push_back({t[0], t[1], static_cast<int32_t>(points.size() - 1)});
+            } else {
+                facets.push_back({t[0], t[1], t[1]});
+            }
+        }
+    }
+    return make_mesh(points, facets);
 }
 
 //! The box [lo, hi], each face an n x n grid split into triangles, outward oriented.

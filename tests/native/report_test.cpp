@@ -21,6 +21,7 @@ RemeshReport sample_report() {
     r.input.euler_characteristic = -2;
     r.output.kappa_min = std::numeric_limits<double>::quiet_NaN();
     r.output.sharp_edge_length = std::numeric_limits<double>::infinity();
+    r.input_cleaning = {3, 10, 102}; // degenerate, duplicates, turned
     r.bbox_diagonal = 123.5;
     r.hausdorff_relative = 1.5e-5;
     r.sites = 6000;
@@ -41,7 +42,7 @@ size_t count(const std::string& s, const std::string& what) {
 TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     const std::string json = to_json(sample_report());
     for (const char* key :
-         {"input", "output", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
+         {"input", "output", "input_duplicates_removed", "input_degenerate_removed", "input_facets_turned", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
           "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed",
           "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
@@ -58,6 +59,9 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     EXPECT_NE(json.find("\"oriented\": true"), std::string::npos);
     EXPECT_NE(json.find("\"hausdorff_relative\": 1.5e-05"), std::string::npos) << json;
     EXPECT_NE(json.find("\"sites\": 6000"), std::string::npos);
+    EXPECT_NE(json.find("\"input_duplicates_removed\": 10,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"input_degenerate_removed\": 3,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"input_facets_turned\": 102,"), std::string::npos) << json;
     // Non-finite values are null: NaN, inf and -inf are not JSON.
     EXPECT_EQ(count(json, "null"), 3u) << json;
     EXPECT_EQ(json.find("nan"), std::string::npos);

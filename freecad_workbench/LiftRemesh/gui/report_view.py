@@ -40,6 +40,10 @@ def report_html(report):
     lines.append("</table>")
     lines.append(distance_line(report))
     extra = []
+    repaired = [(report.get("input_duplicates_removed"), "repeated"), (report.get("input_degenerate_removed"), "degenerate")]
+    extra += ["%d %s facet(s) of the source dropped" % (n, why) for n, why in repaired if n]
+    if report.get("input_facets_turned"):
+        extra.append("%d facet(s) of the source turned" % report["input_facets_turned"])
     if report.get("holes_filled"):
         extra.append("%d hole(s) filled" % report["holes_filled"])
     # counted by the core (report.h), as its warnings count them

@@ -12,6 +12,7 @@
 #include "liftremesh/lift/thin_walls.h"
 #include "liftremesh/measure/quality.h"
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/input_cleaning.h"
 #include "liftremesh/mesh/mesh_io.h"
 #include "liftremesh/mesh/solid_parts.h"
 #include "liftremesh/repair/hole_filling.h"
@@ -350,7 +351,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     clock.begin("prepare");
     check_mesh(input_raw, "input");
     Mesh input = input_raw;
-    weld_exact(input);
+    report.input_cleaning = clean_input(input); // a careless export's facets made into its surface
     remove_unreferenced_vertices(input);
     if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
     check_extent(input, "input");

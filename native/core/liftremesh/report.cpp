@@ -154,6 +154,9 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
 std::string to_json(const RemeshReport& report) {
     return json_object({{"input", json_quality(report.input, 2)},
                         {"output", json_quality(report.output, 2)},
+                        {"input_duplicates_removed", json_number(report.input_cleaning.duplicates_removed)},
+                        {"input_degenerate_removed", json_number(report.input_cleaning.degenerate_removed)},
+                        {"input_facets_turned", json_number(report.input_cleaning.facets_turned)},
                         {"bbox_diagonal", json_number(report.bbox_diagonal)},
                         {"hausdorff_relative", json_number(report.hausdorff_relative)},
                         {"mean_distance_relative", json_number(report.mean_distance_relative)},

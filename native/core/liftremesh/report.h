@@ -2,6 +2,7 @@
 #pragma once
 
 #include "liftremesh/measure/quality.h"
+#include "liftremesh/mesh/input_cleaning.h"
 
 #include <string>
 #include <vector>
@@ -14,7 +15,8 @@ struct StageTime {
 };
 
 struct RemeshReport {
-    MeshQuality input;
+    InputCleaning input_cleaning;        //!< the input's facets dropped and turned before remeshing (input_cleaning.h)
+    MeshQuality input;                   //!< once cleaned
     MeshQuality output;
     double bbox_diagonal = 0.0;          //!< of the input, input units
     double hausdorff_relative = 0.0;     //!< two-sided Hausdorff / bbox_diagonal

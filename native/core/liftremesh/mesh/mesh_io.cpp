@@ -17,7 +17,6 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 namespace liftremesh {
@@ -500,7 +499,10 @@ Mesh read_mesh(const std::string& path) {
     if (soup.triangles.empty()) fail(path, "no triangle found");
     Mesh mesh = to_mesh(soup);
     weld_exact(mesh);
-    if (mesh.triangles.rows() == 0)
+    const auto& t = mesh.triangles;
+    if (((t.col(0).array() == t.col(1).array()) || (t.col(1).array() == t.col(2).array()) ||
+         (t.col(2).array() == t.col(0).array()))
+            .all())
         fail(path,
              "no triangle left after welding (all " + std::to_string(soup.triangles.size()) + " repeat a vertex)");
     return mesh;
@@ -539,23 +541,9 @@ void weld_exact(Mesh& mesh) {
     Points points(static_cast<Eigen::Index>(kept.size()), 3);
     for (size_t j = 0; j < kept.size(); ++j) points.row(static_cast<Eigen::Index>(j)) = mesh.points.row(kept[j]);
 
-    Triangles triangles(mesh.triangles.rows(), 3);
-    Eigen::Index count = 0;
-    // A triangle is listed once: (a, b, c), (b, c, a) and (c, a, b) are the same facet, stored
-    // from its smallest index on. (a, c, b), the other side, is another facet.
-    std::unordered_set<std::array<int32_t, 3>, TriangleKeyHash> facets;
-    facets.reserve(static_cast<size_t>(mesh.triangles.rows()));
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f) {
-        std::array<int32_t, 3> t = {remap[mesh.triangles(f, 0)], remap[mesh.triangles(f, 1)], remap[mesh.triangles(f, 2)]};
-        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue; // collapsed by the weld (or given so)
-        std::array<int32_t, 3> key = t;
-        std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-        if (!facets.insert(key).second) continue; // listed before, as an STL can list a facet twice
-        triangles.row(count++) << t[0], t[1], t[2];
-    }
-    triangles.conservativeResize(count, 3);
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) mesh.triangles(f, j) = remap[mesh.triangles(f, j)];
     mesh.points = std::move(points);
-    mesh.triangles = std::move(triangles);
 }
 
 } // namespace liftremesh

@@ -10,9 +10,10 @@ namespace liftremesh {
 //! Reads a triangle mesh. Format by extension (case-insensitive): .stl (ASCII or binary,
 //! detected from the content), .obj (v/f records; polygons fan-triangulated; negative indices
 //! allowed), .off. Vertices with exactly equal coordinates are welded into one (STL stores
-//! triangles, not shared vertices). Triangles with a repeated vertex index after welding are
-//! dropped. Throws InvalidInput with a one-line message naming the file and the problem
-//! (missing file, unknown extension, malformed line N, truncated binary STL, no triangle).
+//! triangles, not shared vertices); every triangle is kept as the file lists it (remesh()'s
+//! clean_input drops and counts the degenerate and repeated ones). Throws InvalidInput with a
+//! one-line message naming the file and the problem (missing file, unknown extension,
+//! malformed line N, truncated binary STL, no triangle, none with three distinct vertices).
 //!
 //! Details: a .stl is binary when its size is 84 + 50 n (n = the count at byte 80), ASCII when
 //! it starts with "solid" and holds no NUL byte, else a truncated binary STL. OBJ records other
@@ -33,11 +34,9 @@ void write_mesh(const std::string& path, const Mesh& mesh);
 //! Lets a caller refuse a bad output name before any work is done.
 void check_mesh_extension(const std::string& path);
 
-//! Welds vertices with exactly equal coordinates and drops triangles that become degenerate
-//! (a repeated index), and repeats of a triangle already listed with the same orientation (the
-//! same vertices in the same cyclic order: a duplicated facet, which FreeCAD's Mesh workbench
-//! removes as such; the same vertices the other way round are the facet's other side, kept).
-//! Used by read_mesh; exposed for meshes that arrive as arrays.
+//! Welds vertices with exactly equal coordinates (an STL lists each facet's corners apart) and
+//! renumbers the triangles; drops none: clean_input (input_cleaning.h) drops the degenerate and
+//! repeated ones and counts them. Used by read_mesh and clean_input.
 //! Coordinates are compared as doubles (-0.0 equals 0.0; identical NaN bit patterns are merged);
 //! the kept vertex is the first occurrence and the order of first occurrences is kept.
 //! Throws InvalidInput if a triangle index is out of range.
