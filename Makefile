@@ -9,7 +9,8 @@
 #   make build   configure and build in build/ (Release)
 #   make install link the FreeCAD add-on into FreeCAD's user Mod folder (after building)
 #   make uninstall remove that link
-#   make clean   remove build/ and out/
+#   make fuzz    libFuzzer targets under ASan and UBSan in build-fuzz/, FUZZ_SECONDS each (default 60)
+#   make clean   remove build/, build-fuzz/ and out/
 
 BUILD_DIR ?= build
 OUT_DIR   ?= out
@@ -18,7 +19,7 @@ JOBS      ?= 2
 PYTHON    ?= /usr/bin/python3
 CLI       := $(BUILD_DIR)/bin/liftremesh
 
-.PHONY: all deps build test test-freecad1 demo bench docs install uninstall clean
+.PHONY: all deps build test test-freecad1 demo bench docs fuzz install uninstall clean
 
 all: build
 
@@ -50,6 +51,9 @@ bench: deps build
 docs: deps build
 	$(PYTHON) scripts/gen_docs.py --build $(BUILD_DIR)
 
+fuzz: deps
+	JOBS=$(JOBS) bash scripts/fuzz.sh
+
 install: deps build
 	bash scripts/install-addon.sh
 
@@ -57,4 +61,4 @@ uninstall:
 	bash scripts/install-addon.sh --uninstall
 
 clean:
-	rm -rf $(BUILD_DIR) $(OUT_DIR)
+	rm -rf $(BUILD_DIR) build-fuzz $(OUT_DIR)

@@ -31,6 +31,9 @@ optional=(
   python3-scikit-build-core  # `pip install .` without build isolation (Debian 13 only)
   python3-pip                # the pip-installed module check (tests/freecad/check_pip_install.sh)
   python3-venv
+  clang                      # make fuzz: libFuzzer targets (tests/fuzz) built with clang,
+  libclang-rt-dev            # its runtime (libFuzzer, ASan, UBSan)
+  libomp-dev                 # and its OpenMP
 )
 
 installed() {

@@ -487,8 +487,12 @@ std::string off_text(const Mesh& mesh) {
 } // namespace
 
 Mesh read_mesh(const std::string& path) {
+    format_of(path); // an unsupported name is refused before the file is opened
+    return parse_mesh(path, read_whole_file(path));
+}
+
+Mesh parse_mesh(const std::string& path, std::string_view data) {
     const Format format = format_of(path);
-    const std::string data = read_whole_file(path);
     if (data.empty()) fail(path, "file is empty (expected a triangle mesh)");
     Soup soup;
     switch (format) {

@@ -4,6 +4,7 @@
 #include "liftremesh/mesh/mesh.h"
 
 #include <string>
+#include <string_view>
 
 namespace liftremesh {
 
@@ -23,6 +24,10 @@ namespace liftremesh {
 //! are kept. NaN and infinite coordinates are read as they are: check_mesh rejects them.
 //! Numbers are parsed independently of the C locale.
 Mesh read_mesh(const std::string& path);
+
+//! read_mesh on the bytes `data` of a file named `path` (the name gives the format and the
+//! messages): for data that is not in a file, as the fuzz targets (tests/fuzz) feed it.
+Mesh parse_mesh(const std::string& path, std::string_view data);
 
 //! Writes a mesh; format by extension: .stl (binary), .obj, .off. Throws InvalidInput for an
 //! unknown extension or a file that cannot be written, and for a triangle index out of range.
