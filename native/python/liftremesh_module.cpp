@@ -46,6 +46,9 @@ Points to_points(const py::handle& obj) {
     // forcecast would drop the imaginary part of a complex array without a word
     if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
         throw InvalidInput("points must be real numbers, got a complex array");
+    // nor would it refuse text ("1.5") or Python objects: numbers only (float, int, unsigned)
+    if (const py::array raw = py::array::ensure(obj); raw && std::string("fiu").find(raw.dtype().kind()) == std::string::npos)
+        throw InvalidInput("points must be an (n, 3) array of numbers, got dtype " + std::string(py::str(raw.dtype())));
     py::array_t<double, py::array::c_style | py::array::forcecast> a;
     try {
         a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
@@ -158,6 +161,14 @@ void set_from_python(RemeshParams& params, const ParameterInfo& row, const py::h
         set_choice_parameter(params, row, py::cast<std::string>(value));
         return;
     }
+    // A number beyond an integer parameter's range (vertices=10**12, or 1e12) is a value out of
+    // range, as a smaller one is, not a type the C++ int cannot hold.
+    if (row.kind == ParameterKind::Integer && (PyLong_Check(value.ptr()) || PyFloat_Check(value.ptr())) &&
+        !PyBool_Check(value.ptr())) {
+        const double number = PyFloat_Check(value.ptr()) ? PyFloat_AsDouble(value.ptr()) : PyLong_AsDouble(value.ptr());
+        if (PyErr_Occurred()) PyErr_Clear(); // beyond a double: infinite, out of every range
+        if (!row.in_range(number)) throw InvalidInput(out_of_range(row, py::str(value).cast<std::string>()));
+    }
     std::visit(
         [&](auto member) {
             using T = std::remove_reference_t<decltype(params.*member)>;
@@ -177,6 +188,8 @@ void set_keyword(RemeshParams& params, const ParameterInfo& row, const py::handl
     try {
         set_from_python(params, row, value);
     } catch (const py::cast_error&) {
+        if (PyLong_Check(value.ptr()) && !PyBool_Check(value.ptr())) // an integer beyond the C++ type (seed=2**70)
+            throw InvalidInput(out_of_range(row, py::str(value).cast<std::string>()));
         throw py::type_error("remesh(): " + row.name + " must be of kind " + to_string(row.kind) + ", got " +
                              std::string(py::str(py::type::handle_of(value).attr("__name__"))));
     }

@@ -83,6 +83,54 @@ class ModuleTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "mode"):
             liftremesh.remesh(self.points, self.triangles, mode="wobbly")
 
+    def test_the_fuzz_corpus_of_bad_arrays_and_sizes_raises_invalid_input(self):
+        """The bad inputs the readers are fuzzed with (tests/fuzz), as arrays: each is refused
+        with liftremesh.InvalidInput naming the problem, never a crash, a hang or another error."""
+        p, t = self.points, self.triangles
+        one_bad = np.zeros(p.shape, bool)
+        one_bad[5, 1] = True
+        big = t.astype(np.uint64)
+        big[3, 2] = np.uint64(2 ** 64 - 1)
+        cases = [
+            ((np.where(one_bad, np.nan, p), t), {}, "not finite"),
+            ((np.where(one_bad, np.inf, p), t), {}, "not finite"),
+            ((np.where(one_bad, -np.inf, p), t), {}, "not finite"),
+            ((p, np.where(t == 7, len(p), t)), {}, "refers to vertex %d" % len(p)),
+            ((p, np.where(t == 7, -3, t)), {}, "refers to vertex -3"),
+            ((p, np.where(t == 7, 2 ** 31 + 7, t)), {}, "refers to vertex 2147483655"),  # int64 beyond int32
+            ((p, np.where(t == 7, 2 ** 32 + 7, t)), {}, "refers to vertex 4294967303"),  # would wrap to 7
+            ((p, big), {}, "refers to vertex"),
+            ((np.zeros((0, 3)), np.zeros((0, 3), np.int64)), {}, "empty"),
+            ((p, np.zeros((0, 3), np.int64)), {}, "empty"),
+            ((np.array([]), np.array([], np.int64)), {}, "shape"),
+            ((p.reshape(-1), t), {}, "shape"),
+            ((p[None], t), {}, "shape"),
+            ((p, t.reshape(-1, 1)), {}, "shape"),
+            ((p.astype(str), t), {}, "numbers"),
+            ((np.full(p.shape, None, object), t), {}, "numbers"),
+            ((p.astype(bool), t), {}, "numbers"),
+            ((p, t.astype(bool)), {}, "integer"),
+            ((p, t.astype(np.float32)), {}, "integer"),
+            ((p, np.array([[0, 0, 1], [2, 2, 2]])), {}, "no non-degenerate triangle"),
+            ((np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]]), np.array([[0, 1, 2]])), {}, "no non-degenerate"),
+            ((p * 1e-300, t), {}, "positive area"),
+            ((p * 1e307, t), {}, "positive area"),
+            ((p, t), {"vertices": 10 ** 12}, "vertices = 1000000000000 is out of range"),
+            ((p, t), {"vertices": 1e12}, "vertices = 1000000000000.0 is out of range"),
+            ((p, t), {"vertices": 10 ** 30}, "out of range"),
+            ((p, t), {"edge_length": 1e-300}, "edge_length = 1e-300 gives inf vertices"),
+            ((p, t), {"edge_length": 1e300}, "gives 0 vertices"),
+            ((p, t), {"edge_length": float("nan")}, "out of range"),
+            ((p, t), {"iterations": 10 ** 12}, "out of range"),
+            ((p, t), {"threads": 10 ** 9}, "out of range"),
+            ((p, t), {"seed": 2 ** 70}, "seed = %d is out of range" % 2 ** 70),
+            ((p, t), {"seed": -1}, "out of range"),
+        ]
+        for args, options, words in cases:
+            with self.subTest(words=words, options=options):
+                with self.assertRaisesRegex(liftremesh.InvalidInput, words):
+                    liftremesh.remesh(*args, **options)
+
     def test_progress_can_cancel(self):
         seen = []
 
