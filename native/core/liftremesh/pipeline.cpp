@@ -351,10 +351,15 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     clock.begin("prepare");
     check_mesh(input_raw, "input");
     Mesh input = input_raw;
+    remove_unreferenced_vertices(input);
+    // Before the cleaning: a corrupt file's far vertex makes a needle of the facets using it,
+    // which the cleaning would drop as of zero area (relative to its longest side) unsaid.
+    check_extent(input, "input");
     report.input_cleaning = clean_input(input); // a careless export's facets made into its surface
     remove_unreferenced_vertices(input);
-    if (input.triangles.rows() == 0) throw InvalidInput("input mesh has no non-degenerate triangle");
-    check_extent(input, "input");
+    if (input.triangles.rows() == 0)
+        throw InvalidInput("input mesh has no triangle of positive area: all " + std::to_string(input_raw.triangles.rows()) +
+                           " have a repeated vertex or zero area");
     const double input_area = surface_area(input);
     const long sites_wanted = target_site_count(params, input_area);
     check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
