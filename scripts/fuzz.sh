@@ -31,7 +31,7 @@ for t in $targets; do
   rc=0
   ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1} UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1} \
     "$build/bin/fuzz_$t" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 \
-    -print_final_stats=1 -artifact_prefix="$build/artifacts/$t/" \
+    -report_slow_units="$timeout" -print_final_stats=1 -artifact_prefix="$build/artifacts/$t/" \
     "$build/corpus/$t" "tests/fuzz/corpus/$t" >"$build/fuzz_$t.log" 2>&1 || rc=$?
   # The last progress line (executions, cov, ft, corpus) and the final statistics.
   grep -E '^#[0-9]+' "$build/fuzz_$t.log" | tail -1 || true

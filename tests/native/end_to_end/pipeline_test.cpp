@@ -180,6 +180,28 @@ TEST(Remesh, ATwoSidedSheetIsNotTakenForDuplicates) {
     EXPECT_EQ(r.report.input_cleaning.facets_turned, 0);
 }
 
+// Found by make fuzz (fuzz_remesh, slow-unit-eccafb2f): three binary STL facets, a speck 1e-41
+// across (float denormals), a facet with a repeated vertex and a needle 2.8e7 long and 0.2 wide, at
+// 40 vertices and 12 iterations. Under ASan a run took 14-29 s, all of it sampling the needle's
+// border for the holes' test at the budget of kMaxSegmentSamples (geometry.h): 1.1 s in Release,
+// bounded. It must end with a surface referring to its own finite vertices, or a typed error.
+TEST(Remesh, AFuzzedNeedleBesideADenormalSpeckEndsWithASurface) {
+    const Mesh soup = test::make_mesh({{0, 0, 7.17464814e-43}, {5.60519386e-45, 0, 2.27795078e-41},
+                                       {0, 2.27795078e-41, 0}, {0, 0, 0}, {0, 0, 0}, {0.125242233, 0.188728005, 0.215302005},
+                                       {-28474512, 2.20774573e-41, 0}, {0, 0, 0.204820007},
+                                       {0.195574, 0.0682599023, 0.202049002}},
+                                      {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}});
+    RemeshParams p = params_with(40);
+    p.iterations = 12;
+    p.threads = 1;
+    const RemeshResult r = remesh(soup, p);
+    EXPECT_EQ(r.report.input_cleaning.degenerate_removed, 1); // the repeated vertex (the speck has a shape)
+    ASSERT_GT(r.mesh.triangles.rows(), 0);
+    EXPECT_TRUE(r.mesh.points.allFinite());
+    EXPECT_GE(r.mesh.triangles.minCoeff(), 0);
+    EXPECT_LT(r.mesh.triangles.maxCoeff(), r.mesh.points.rows());
+}
+
 TEST(Remesh, SameSeedSameResultAndBadInputIsRejected) {
     const Mesh input = test::make_icosphere(2);
     RemeshParams p = params_with(200);
