@@ -113,6 +113,8 @@ class RemeshTaskPanel:
 
     def accept(self):
         """OK: starts the remesh (the panel stays open); after a result, closes."""
+        if self._gone():
+            return False
         try:
             if self.running():
                 FreeCAD.Console.PrintWarning("LiftRemesh: the remesh is still running: wait, or Cancel it\n")
@@ -142,6 +144,8 @@ class RemeshTaskPanel:
     def apply(self):
         """Apply: remeshes with the values shown; the result replaces the previous one (one undo
         step) and the panel stays open. False when refused or it could not start."""
+        if self._gone():
+            return False
         try:
             if self.running():
                 return False
@@ -211,7 +215,7 @@ class RemeshTaskPanel:
         """Timer slot (main thread): shows the progress; handles the outcome once the job ended.
         A panel whose form is gone (closed) stops polling and cancels its job."""
         current = self.job
-        if self._closed or not common.widget_alive(self.form):
+        if self._gone():
             self._stop()
             return
         if current is None:
@@ -290,6 +294,11 @@ class RemeshTaskPanel:
         common.report_error("Remesh failed, the document is unchanged: %s" % message)
 
     # --- closing --------------------------------------------------------------------------------
+
+    def _gone(self):
+        """True once the panel has closed or FreeCAD has deleted its form: a late call (a queued
+        click, a macro holding the panel) then does nothing and says nothing."""
+        return self._closed or not common.widget_alive(self.form)
 
     def _stop(self):
         """The panel is closing or gone: no more polling, and no job left running."""
