@@ -238,6 +238,18 @@ class BracketSolidTest(unittest.TestCase):
                 total = sum(area for _, area in areas)
                 self.assertAlmostEqual(total / face.Area, 1.0, delta=0.01)
 
+    @unittest.skip("known gap (docs/known-gaps.md): faces meeting their neighbours tangentially, such "
+                   "as the 2 mm foot fillet (about 20% covered), have no crease for the remesher to follow")
+    def test_every_face_of_the_shape_is_covered_by_element_faces(self):
+        """The literal aim: a load on any face of the part, fillets included, is applied in full."""
+        fem_mesh = self.fem_obj.FemMesh
+        table = meshtools.get_femelement_table(fem_mesh)
+        for i, face in enumerate(self.shape.Faces, 1):
+            with self.subTest(face="Face%d" % i, surface=face.Surface.TypeId):
+                face_table = meshtools.get_ref_facenodes_table(fem_mesh, table, face)
+                areas = meshtools.get_ref_facenodes_areas(fem_mesh.Nodes, face_table)
+                self.assertAlmostEqual(sum(area for _, area in areas) / face.Area, 1.0, delta=0.01)
+
     def test_static_analysis_matches_fems_own_gmsh_mesh(self):
         displacement, reaction = solve(self, self.doc, self.fem_obj, self.part, self.faces, "Solid")
         RESULTS["remeshed B-rep"] = displacement
