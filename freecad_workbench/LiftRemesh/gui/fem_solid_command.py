@@ -13,9 +13,9 @@ from .. import fem
 from .. import fem_solid
 from . import common
 from . import job
+from . import progress_dialog
 
 FEM_SOLID = "LiftRemesh_FemSolid"
-POLL_SECONDS = 0.05
 
 # Share of one mesh's progress bar at the start of each stage solid_mesh reports, and its words.
 STAGES = {
@@ -73,29 +73,6 @@ class SolidJob(job.RemeshJob):
         self.results = results
 
 
-def run_with_progress(solid_job):
-    """Starts the job and waits for it behind a modal progress dialog whose Cancel cancels it."""
-    from PySide import QtCore, QtGui
-
-    dialog = QtGui.QProgressDialog("Filling with tetrahedra...", "Cancel", 0, 1000, common.main_window())
-    dialog.setWindowTitle("FEM solid mesh")
-    dialog.setWindowModality(QtCore.Qt.WindowModal)
-    dialog.setMinimumDuration(0)
-    solid_job.start()
-    try:
-        while not solid_job.finished():
-            if dialog.wasCanceled() and not solid_job.cancel_requested:
-                solid_job.cancel()
-            dialog.setValue(int(1000 * solid_job.fraction()))
-            dialog.setLabelText(solid_job.text())
-            QtGui.QApplication.processEvents()
-            solid_job.join(POLL_SECONDS)
-    finally:
-        dialog.reset()
-        dialog.close()
-        dialog.deleteLater()
-
-
 class CommandFemSolid:
     """Fills each selected closed mesh with tet10 elements: a Fem::FemMeshObject each."""
 
@@ -128,7 +105,12 @@ class CommandFemSolid:
         except Exception as error:
             common.report_error("FEM solid mesh failed: %s" % common.describe_error(error))
             return
-        run_with_progress(solid_job)
+        dialog = progress_dialog.ProgressDialog("FEM solid mesh", "Filling with tetrahedra...", 0)
+        try:
+            solid_job.start()
+            progress_dialog.wait(solid_job, dialog, lambda: (solid_job.fraction(), solid_job.text()))
+        finally:
+            dialog.close()
         if solid_job.cancelled():
             common.report_warning("FEM solid mesh cancelled; the document is unchanged.")
             return

@@ -17,16 +17,15 @@ starts no nested run: it is refused the same way.
 import time
 
 import FreeCAD
-from PySide import QtCore, QtGui
+from PySide import QtCore
 
 from .. import meshing
 from .. import parameters
 from . import common
 from . import job as remesh_job
+from . import progress_dialog
 
 MIN_DURATION_MS = 500  # a shorter run shows no dialog (as QProgressDialog's minimumDuration)
-POLL_S = 0.05  # how long the wait blocks between two rounds of GUI events
-STEPS = 1000  # the dialog's range
 
 
 class AfterRecompute:
@@ -63,36 +62,6 @@ class AfterRecompute:
         self.messages = [(name, m) for name, m in self.messages if name != doc.Name]
 
 
-class ProgressDialog:
-    """The modal progress dialog of one run, shown after MIN_DURATION_MS; Cancel (or closing it)
-    asks the job to stop."""
-
-    def __init__(self, label, on_cancel):
-        self.dialog = QtGui.QProgressDialog(common.main_window())
-        self.dialog.setWindowTitle(common.TITLE)
-        self.dialog.setWindowModality(QtCore.Qt.WindowModal)
-        self.dialog.setLabelText("Recomputing %s" % label)
-        self.dialog.setCancelButtonText("Cancel")
-        self.dialog.setRange(0, STEPS)
-        self.dialog.setAutoClose(False)
-        self.dialog.setAutoReset(False)
-        self.dialog.setMinimumDuration(MIN_DURATION_MS)
-        self.dialog.canceled.connect(on_cancel)
-        self.dialog.setValue(0)  # starts the minimum duration
-
-    def show(self, fraction, text):
-        if self.dialog.wasCanceled():
-            return  # Cancel hid the dialog; setValue() would show it again
-        self.dialog.setLabelText(text)
-        self.dialog.setValue(max(1, int(round(STEPS * fraction))))
-
-    def close(self):
-        self.dialog.canceled.disconnect()
-        self.dialog.reset()  # stops the timer that would show it after the minimum duration
-        self.dialog.hide()
-        self.dialog.deleteLater()
-
-
 class Recomputer:
     """Runs the remesh of one feature's recompute at a time, waiting for it with the GUI alive."""
 
@@ -113,10 +82,12 @@ class Recomputer:
         except Exception as error:
             return self.fail(obj, "recompute failed, the mesh is the previous one: %s" % common.describe_error(error))
         self.run = (obj.Label, job)
-        dialog = ProgressDialog(obj.Label, job.cancel)
+        label = obj.Label
+        dialog = progress_dialog.ProgressDialog(common.TITLE, "Recomputing %s" % label, MIN_DURATION_MS)
         try:
             job.start()
-            self.wait(job, dialog, obj.Label)
+            progress_dialog.wait(job, dialog,
+                                 lambda: (job.progress.fraction(1), "Recomputing " + job.progress.text([label])))
         finally:
             dialog.close()
             self.run = None
@@ -128,19 +99,6 @@ class Recomputer:
         meshing.print_warnings(result, obj.Label)
         self.after.show_status(obj, "%s recomputed in %.1f s" % (obj.Label, time.monotonic() - started))
         return result
-
-    @staticmethod
-    def wait(job, dialog, label):
-        """Processes GUI events until the job has ended, showing its progress. User input goes
-        only to the dialog once it is shown (modal); before, none is processed."""
-        while not job.finished():
-            job.join(POLL_S)
-            progress = job.progress
-            dialog.show(progress.fraction(1), "Recomputing " + progress.text([label]))
-            flags = QtCore.QEventLoop.AllEvents
-            if not dialog.dialog.isVisible():
-                flags = QtCore.QEventLoop.ExcludeUserInputEvents
-            QtGui.QApplication.processEvents(flags)
 
     def fail(self, obj, message, printer=None):
         """One line in the report view and the status bar; the feature keeps its mesh, touched."""
