@@ -169,9 +169,37 @@ struct AabbTree::Impl {
     //! only the thin-wall search does (bound_normals).
     std::vector<NormalBox> normal_boxes;
     std::once_flag normals_bounded;
+    //! Per triangle in tree order, its area times its unit normal; per node, the sum of these
+    //! over its triangles. Made by the first ball sum (sum_normals).
+    std::vector<Eigen::Vector3d> weighted_normals, node_normal_sums;
+    std::once_flag normals_summed;
 
     const std::vector<NormalBox>& bound_normals();
+    void sum_normals();
 };
+
+void AabbTree::Impl::sum_normals() {
+    std::call_once(normals_summed, [this] {
+        const auto nt = static_cast<int32_t>(ids.size());
+        weighted_normals.resize(ids.size());
+#pragma omp parallel for schedule(static) if (nt >= kParallelSize)
+        for (int32_t t = 0; t < nt; ++t) {
+            const Eigen::Vector3d* c = &corners[3 * static_cast<size_t>(t)];
+            weighted_normals[t] = triangle_area(c[0], c[1], c[2]) * normals[ids[t]];
+        }
+        node_normal_sums.assign(nodes.size(), Eigen::Vector3d::Zero());
+        // Children come after their parent (Builder), so one backward pass sums every node.
+        for (size_t i = nodes.size(); i-- > 0;) {
+            const Node& node = nodes[i];
+            Eigen::Vector3d& sum = node_normal_sums[i];
+            if (node.count > 0) {
+                for (int32_t t = node.first; t < node.first + node.count; ++t) sum += weighted_normals[t];
+            } else {
+                sum = node_normal_sums[node.first] + node_normal_sums[node.first + 1];
+            }
+        }
+    });
+}
 
 const std::vector<NormalBox>& AabbTree::Impl::bound_normals() {
     std::call_once(normals_bounded, [this] {
@@ -355,6 +383,64 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
         stack[top++] = node.first + 1;
         stack[top++] = node.first;
     }
+}
+
+Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing,
+                                                      const std::function<double(int32_t)>& clipped_area) const {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    const auto& nodes = impl_->nodes;
+    if (nodes.empty() || !(r > 0.0)) return sum;
+    const NormalBox* normal_boxes = impl_->bound_normals().data();
+    impl_->sum_normals();
+    const double r2 = r * r;
+    const double inside_d2 = r2 * (1.0 - 1e-9); // as in triangles_within
+    // The range of n.dot(direction) over a node's box of normals: the lesser and the greater end's
+    // products axis by axis. The margin keeps a node's verdict clear of that sum's rounding, so
+    // a node is settled whole only when every triangle's own test would agree.
+    auto facing_range = [&](const NormalBox& box) {
+        double least = 0.0, most = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const double lo = double{box.lo[k]} * facing.direction[k], hi = double{box.hi[k]} * facing.direction[k];
+            least += std::min(lo, hi);
+            most += std::max(lo, hi);
+        }
+        return std::pair{least - 1e-9, most + 1e-9};
+    };
+    int32_t stack[2 * kMaxDepth];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const int32_t index = stack[--top];
+        const Node& node = nodes[index];
+        if (!(box_squared_distance(node.box, q) < r2)) continue;
+        const auto [least, most] = facing_range(normal_boxes[index]);
+        if (most < facing.min_dot) continue; // none of its triangles faces so
+        if (least >= facing.min_dot && box_farthest_squared_distance(node.box, q) < inside_d2) {
+            sum += impl_->node_normal_sums[index]; // all of it in the ball, all facing so
+            continue;
+        }
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t) {
+                if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
+                const Eigen::Vector3d& n = impl_->normals[impl_->ids[t]];
+                if (n.dot(facing.direction) < facing.min_dot) continue;
+                // The ball is convex: a triangle whose corners are inside is wholly inside.
+                const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
+                if ((c[0] - q).squaredNorm() < inside_d2 && (c[1] - q).squaredNorm() < inside_d2 &&
+                    (c[2] - q).squaredNorm() < inside_d2) {
+                    sum += impl_->weighted_normals[t];
+                    continue;
+                }
+                if ((closest_point_on_triangle(q, c[0], c[1], c[2]) - q).squaredNorm() < r2)
+                    sum += clipped_area(impl_->ids[t]) * n;
+            }
+            continue;
+        }
+        assert(top + 2 <= 2 * kMaxDepth);
+        stack[top++] = node.first + 1;
+        stack[top++] = node.first;
+    }
+    return sum;
 }
 
 void AabbTree::triangles_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,

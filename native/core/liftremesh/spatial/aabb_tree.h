@@ -62,6 +62,21 @@ public:
     //! the tree holds them. Thread-safe (const).
     void triangles_within(const Eigen::Vector3d& q, double r, std::vector<int32_t>& out) const;
 
+    //! Triangles whose unit normal n has n.dot(direction) >= min_dot: those a ball sum counts.
+    struct FacingWith {
+        Eigen::Vector3d direction;
+        double min_dot;
+    };
+
+    //! The sum, over the triangles t strictly nearer to q than r that face as `facing` asks, of
+    //! w_t n_t: n_t the unit normal, w_t the area of t inside the ball of radius r about q.
+    //! A triangle wholly inside the ball weighs its whole area, and a subtree wholly inside whose
+    //! normals all face so adds a sum kept per node: only the triangles crossing the sphere cost
+    //! a call to `clipped_area(t)`, which gives their w_t. The terms are added in the tree's
+    //! order, the same on any number of threads. Thread-safe if `clipped_area` is.
+    Eigen::Vector3d area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing,
+                                                 const std::function<double(int32_t)>& clipped_area) const;
+
     //! Appends to `out` the triangles whose bounding boxes meet the closed box [lo, hi], in the
     //! order the tree holds them. Thread-safe (const).
     void triangles_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::vector<int32_t>& out) const;
