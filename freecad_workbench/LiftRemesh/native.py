@@ -13,6 +13,12 @@ ADDON_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__f
 
 _module = None
 
+# OpenMP threads that wait for work sleep rather than spin (native/cli/main.cpp says why: a core
+# busy with other work, FreeCAD's own for one, would otherwise slow a run far down). libgomp reads
+# the policy when it is loaded, so it is set before the module is imported; a user's choice stands.
+if "OMP_WAIT_POLICY" not in os.environ and "GOMP_SPINCOUNT" not in os.environ:
+    os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
+
 
 def module_dirs():
     """Folders searched for the compiled module, besides sys.path."""

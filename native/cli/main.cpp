@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -54,9 +55,22 @@ void check_writable(const std::string& path) {
         throw InvalidInput("cannot write '" + path + "': the file is read-only");
 }
 
+// Threads that wait for work sleep rather than spin. libgomp's waiting threads spin for some
+// milliseconds first (GOMP_SPINCOUNT) at every barrier and between parallel regions; with
+// another process busy on one of the cores, the spinning thread takes the core from the one that
+// has the work, and the run slows down to well below one thread's speed. libgomp reads the policy
+// once, when it is loaded, before main: so the CLI runs itself again with the variable set,
+// unless the user has chosen a policy (then theirs stands). The result does not depend on it.
+void sleep_while_waiting(char** argv) {
+    if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+    if (::setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+    ::execv("/proc/self/exe", argv); // returns only on failure: go on with the spinning policy
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    sleep_while_waiting(argv);
     cli::CliOptions options;
     try {
         options = cli::parse_options(std::vector<std::string>(argv + 1, argv + argc));
