@@ -23,6 +23,9 @@ import subprocess
 import sys
 import time
 
+import bench_gmsh
+import bench_scale
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # (file, target vertices); every run does ITERATIONS iterations.
@@ -47,22 +50,25 @@ def peak_rss_mib(time_output):
     return int(m.group(1)) / 1024.0 if m else None
 
 
-def run_case(cli, mesh_dir, out_dir, name, vertices):
-    stem = os.path.splitext(name)[0]
-    out_mesh = os.path.join(out_dir, stem + "_remeshed" + os.path.splitext(name)[1])
-    report_path = os.path.join(out_dir, stem + "_report.json")
-    time_path = os.path.join(out_dir, stem + "_time.txt")
+def run_cli(cli, source, out_dir, tag, vertices, extra=(), env=None):
+    """One run of the CLI on the file `source`; a row with its wall time, peak memory, report and
+    output path."""
+    ext = os.path.splitext(source)[1]
+    out_mesh = os.path.join(out_dir, tag + "_remeshed" + ext)
+    report_path = os.path.join(out_dir, tag + "_report.json")
+    time_path = os.path.join(out_dir, tag + "_time.txt")
     if os.path.exists(report_path):
         os.remove(report_path)
-    cmd = ["/usr/bin/time", "-v", "-o", time_path, cli, os.path.join(mesh_dir, name), out_mesh,
+    cmd = ["/usr/bin/time", "-v", "-o", time_path, cli, source, out_mesh,
            "--vertices", str(vertices), "--iterations", str(ITERATIONS),
-           "--report", report_path, "--quiet"]
+           "--report", report_path, "--quiet"] + list(extra)
     sys.stderr.write("bench: %s\n" % " ".join(cmd[4:]))
     start = time.monotonic()
-    proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                          env=dict(os.environ, **(env or {})))
     wall = time.monotonic() - start
-    row = {"name": name, "target": vertices, "wall": wall, "rc": proc.returncode,
-           "error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else ""}
+    row = {"name": os.path.basename(source), "target": vertices, "wall": wall, "rc": proc.returncode,
+           "output": out_mesh, "error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else ""}
     if os.path.exists(time_path):
         with open(time_path) as f:
             row["rss"] = peak_rss_mib(f.read())
@@ -70,6 +76,10 @@ def run_case(cli, mesh_dir, out_dir, name, vertices):
         with open(report_path) as f:
             row["report"] = json.load(f)
     return row
+
+
+def run_case(cli, mesh_dir, out_dir, name, vertices):
+    return run_cli(cli, os.path.join(mesh_dir, name), out_dir, os.path.splitext(name)[0], vertices)
 
 
 def best_of(cli, mesh_dir, out_dir, name, vertices, repeat):
@@ -111,14 +121,15 @@ def table(rows):
             if stage not in stages:
                 stages.append(stage)
     head = (["input", "target V", "sites", "iterations", "evaluations"] + ["%s s" % s for s in stages]
-            + ["wall s", "slowest wall s", "peak MiB", "kappa min", "kappa mean", "sharp60 out/in", "Hausdorff %", "chi in/out"])
+            + ["wall s", "slowest wall s", "peak MiB", "kappa min", "kappa mean", "sharp60 out/in", "Hausdorff %", "chi in/out",
+               "Gmsh wall s", "wall / Gmsh", "Gmsh kappa min"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
         report = row.get("report")
         if report is None:
             cells = ([row["name"], str(row["target"]), "failed (exit %d)" % row["rc"], row["error"], "-"]
                      + ["-"] * len(stages) + [fmt(row["wall"], ".2f"), "-", fmt(row.get("rss"), ".0f")]
-                     + ["-"] * 5)
+                     + ["-"] * 8)
         else:
             times = dict(stage_times(report.get("timings")))
             out = report["output"]
@@ -130,9 +141,17 @@ def table(rows):
                         sharp_ratio(report),
                         fmt(report["hausdorff_relative"], ".3f", 100.0),
                         "%d / %d" % (report["input"]["euler_characteristic"],
-                                     out["euler_characteristic"])])
+                                     out["euler_characteristic"])] + gmsh_cells(row))
         lines.append("| " + " | ".join(c.replace("|", "/") for c in cells) + " |")
     return "\n".join(lines)
+
+
+def gmsh_cells(row):
+    """Gmsh's wall time on the same input and vertex count, our wall time over it, its kappa min."""
+    gmsh = row.get("gmsh") or {"error": "not run"}
+    if "error" in gmsh:
+        return [gmsh["error"], "-", "-"]
+    return [fmt(gmsh["wall"], ".2f"), fmt(row["wall"] / gmsh["wall"], ".2f"), fmt(gmsh["kappa_min"], ".3f")]
 
 
 def sharp_ratio(report):
@@ -164,7 +183,7 @@ def load_average():
         return None
 
 
-def results_page(rows, repeat, gauge_before, gauge_after, load_before=None, load_after=None):
+def results_page(rows, repeat, gauge_before, gauge_after, load_before=None, load_after=None, extra=""):
     """docs/results.md: today's table with its date, commit, host and commands."""
     mesh_dir = "../shared/meshes"
     lines = [
@@ -202,9 +221,13 @@ def results_page(rows, repeat, gauge_before, gauge_after, load_before=None, load
         "`sharp60`: total length of edges with a dihedral angle above 60 degrees, output over input;",
         "Hausdorff: two-sided, relative to the input's bounding-box diagonal (a sampled lower bound);",
         "chi: Euler characteristic. Every field is described in [report.md](report.md).",
+        "Gmsh: its tutorial t13 recipe (`scripts/bench_gmsh.py`: classifySurfaces at 40 degrees,",
+        "createGeometry, generate(2), single-threaded, the mesh size of an equilateral mesh with the",
+        "vertices asked for), timed from reading the file to the end of its meshing, fastest of as",
+        "many runs.",
         "",
     ]
-    return "\n".join(lines)
+    return "\n".join(lines) + extra
 
 
 def main():
@@ -216,6 +239,10 @@ def main():
     parser.add_argument("--repeat", type=int, default=3, metavar="N",
                         help="runs per case; the fastest is shown (default 3)")
     parser.add_argument("--only", nargs="+", metavar="NAME", help="run only these mesh files")
+    parser.add_argument("--sections", nargs="+", default=["shared", "scale", "threads", "fig9"],
+                        choices=["shared", "scale", "threads", "fig9"],
+                        help="tables to make (default all): the shared meshes beside Gmsh, the scale "
+                             "table, one thread against two, the paper's Fig. 9 job")
     parser.add_argument("--results", metavar="FILE.md",
                         help="also write the table as a page with date, commit and commands")
     args = parser.parse_args()
@@ -231,13 +258,29 @@ def main():
     load_before = load_average()
     gauge_before = host_gauge()
     rows = []
-    for name, vertices in CASES:
-        if args.only and name not in args.only:
-            continue
-        if not os.path.exists(os.path.join(args.meshes, name)):
-            sys.stderr.write("bench: %s missing, skipped\n" % name)
-            continue
-        rows.append(best_of(args.cli, args.meshes, args.out, name, vertices, max(1, args.repeat)))
+    if "shared" in args.sections:
+        for name, vertices in CASES:
+            if args.only and name not in args.only:
+                continue
+            if not os.path.exists(os.path.join(args.meshes, name)):
+                sys.stderr.write("bench: %s missing, skipped\n" % name)
+                continue
+            row = best_of(args.cli, args.meshes, args.out, name, vertices, max(1, args.repeat))
+            row["gmsh"] = bench_gmsh.timed(os.path.join(args.meshes, name), vertices, args.out, max(1, args.repeat))
+            rows.append(row)
+    extra = []  # (title, explanation, table) of the other sections
+    failed = [r for r in rows if "report" not in r]
+    if "scale" in args.sections or "threads" in args.sections:
+        runs, large = bench_scale.scale(run_cli, args.cli, args.meshes, args.out)
+        failed += [r for r in runs if "report" not in r]
+        extra.append(("Scale", SCALE_TEXT, bench_scale.scale_table(runs)))
+        if "threads" in args.sections:
+            pairs, busy = bench_scale.threads(run_cli, args.cli, args.meshes, args.out, large)
+            extra.append(("Threads", THREADS_TEXT, bench_scale.threads_tables(pairs, busy)))
+    if "fig9" in args.sections:
+        row, gmsh = bench_scale.fig9(run_cli, args.cli, args.out)
+        failed += [row] if "report" not in row else []
+        extra.append(("The paper's Fig. 9 job", FIG9_TEXT, bench_scale.fig9_table(row, gmsh)))
 
     gauge_after = host_gauge()
     load_after = load_average()
@@ -246,12 +289,33 @@ def main():
     print("host gauge (scripts/bench.py host_gauge, lower is faster): %.3f s before, %.3f s after"
           % (gauge_before, gauge_after))
     print()
-    print(table(rows))
+    if rows:
+        print(table(rows))
+    sections = "".join("\n## %s\n\n%s\n\n%s\n" % part for part in extra)
+    print(sections)
     if args.results and rows:
         with open(args.results, "w") as f:
-            f.write(results_page(rows, max(1, args.repeat), gauge_before, gauge_after, load_before, load_after))
+            f.write(results_page(rows, max(1, args.repeat), gauge_before, gauge_after, load_before, load_after,
+                                 sections))
         sys.stderr.write("bench: wrote %s\n" % args.results)
-    return 1 if any("report" not in r for r in rows) else 0
+    return 1 if failed else 0
+
+
+SCALE_TEXT = """The shared bunny (69k triangles) with every triangle split into four at its edge midpoints,
+once (280k) and twice (1.1M), made by `scripts/bench_inputs.py` under the output folder: the same
+surface each time. Default settings, all cores, 100 iterations, one run each. The last column is
+the optimize stage's time per evaluation over sites plus input triangles: flat if the cost of an
+iteration grows with them, no more."""
+
+THREADS_TEXT = """The optimize stage on one thread and on two (`--threads 1` and `--threads 2`; the large case's
+two-thread run is the scale table's), and whether the two outputs are the same file, byte for
+byte. Then t13 at 6000 vertices run while another process (a Python busy loop) keeps one core
+busy. The CLI lets OpenMP's waiting threads sleep (`OMP_WAIT_POLICY=PASSIVE`, set unless the
+user chose a policy); the row with `OMP_WAIT_POLICY=ACTIVE` shows what spinning threads cost."""
+
+FIG9_TEXT = """The demo bracket (`make demo`'s part) tessellated by FreeCAD at 0.005 mm and 2.75 degrees
+(`scripts/bench_inputs.py fine_bracket`), remeshed to 50 000 vertices, 100 iterations. The paper
+took 100 s for its part on one core of an i7-2620M, and Gmsh 51 s."""
 
 
 if __name__ == "__main__":

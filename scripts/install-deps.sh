@@ -28,6 +28,7 @@ optional=(
   calculix-ccx               # CalculiX solver: the FEM hand-off test runs a static shell analysis
                              # (Debian 12 only: Debian 13 has no calculix-ccx)
   gmsh                       # FreeCAD FEM's own mesher: the FEM solid test compares with its mesh of the B-rep
+  python3-gmsh               # make bench: Gmsh's t13 recipe timed beside each case (scripts/bench_gmsh.py)
   python3-scikit-build-core  # `pip install .` without build isolation (Debian 13 only)
   python3-pip                # the pip-installed module check (tests/freecad/check_pip_install.sh)
   python3-venv

@@ -8,6 +8,7 @@ Genus 3 (three through-holes), so a closed tessellation has Euler characteristic
 
 Run with Debian's Python, which finds FreeCAD through its library directory:
     /usr/bin/python3 scripts/make_demo_part.py [OUT.stl]        (default out/demo_part.stl)
+        [--linear-deflection MM] [--angular-deflection DEG]   (default FreeCAD's standard mesher's)
 It also runs as `freecadcmd scripts/make_demo_part.py`. freecadcmd exits 0 even when a script
 raises, so every failure ends in an explicit os._exit(1).
 """
@@ -37,6 +38,17 @@ def output_path():
     # Under freecadcmd, sys.argv holds freecadcmd's own arguments: take the last .stl, if any.
     args = [a for a in sys.argv[1:] if a.lower().endswith(".stl")]
     return args[-1] if args else os.path.join("out", "demo_part.stl")
+
+
+def option(name, default):
+    """The number after `name` on the command line, or `default`."""
+    args = sys.argv[1:]
+    if name in args and args.index(name) + 1 < len(args):
+        try:
+            return float(args[args.index(name) + 1])
+        except ValueError:
+            fail("%s expects a number, got %r" % (name, args[args.index(name) + 1]))
+    return default
 
 
 def check_solid(shape):
@@ -74,8 +86,9 @@ def main():
     import Part
 
     solid = check_solid(make_bracket(Part, FreeCAD.Vector))
-    mesh = MeshPart.meshFromShape(Shape=solid, LinearDeflection=LINEAR_DEFLECTION,
-                                  AngularDeflection=ANGULAR_DEFLECTION)
+    linear = option("--linear-deflection", LINEAR_DEFLECTION)
+    angular = math.radians(option("--angular-deflection", math.degrees(ANGULAR_DEFLECTION)))
+    mesh = MeshPart.meshFromShape(Shape=solid, LinearDeflection=linear, AngularDeflection=angular)
     chi = check_mesh(mesh, "the tessellation")
     expected_chi = 2 - 2 * THROUGH_HOLES
     if chi != expected_chi:
@@ -95,9 +108,9 @@ def main():
     print("demo part: bracket %.0f x %.0f x %.0f mm, valid closed solid, volume %.1f mm^3, "
           "%d faces, genus %d" % (bb.XLength, bb.YLength, bb.ZLength, solid.Volume,
                                   len(solid.Faces), THROUGH_HOLES))
-    print("tessellation (LinearDeflection %.2f mm, AngularDeflection %.0f deg): %d vertices, "
+    print("tessellation (LinearDeflection %.3g mm, AngularDeflection %.3g deg): %d vertices, "
           "%d triangles, closed, Euler characteristic %d -> %s"
-          % (LINEAR_DEFLECTION, math.degrees(ANGULAR_DEFLECTION), mesh.CountPoints,
+          % (linear, math.degrees(angular), mesh.CountPoints,
              mesh.CountFacets, chi, path))
 
 

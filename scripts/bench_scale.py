@@ -1,0 +1,145 @@
+"""The benchmark's tables beyond the shared meshes (scripts/bench.py runs them):
+- scale: the cost of the optimiser against sites and input triangles, on the shared bunny split
+  into four once and twice (280k and 1.1M triangles): 10k, 30k and 100k sites on 1.1M triangles,
+  and 100k sites on 70k, 280k and 1.1M;
+- threads: the optimize stage on one thread and on two, for t13 at 6000 vertices and for the
+  large case (1.1M triangles to 100k vertices), with the outputs compared byte for byte; and
+  t13 with another process keeping one core busy, beside Gmsh on the same busy host;
+- fig9: the paper's Fig. 9 job, a CAD part of about 40k triangles (the demo bracket tessellated
+  finely by FreeCAD) to 50k vertices, beside Gmsh.
+Each run is made once: these are long, and the shared table's repeats show the noise.
+"""
+
+import filecmp
+import os
+import subprocess
+import sys
+
+import bench_gmsh
+import bench_inputs
+
+LARGE_SITES = 100000
+SCALE_RUNS = [(2, 10000), (2, 30000), (2, 100000), (0, 100000), (1, 100000)]  # (splits, sites)
+
+
+def fmt(value, spec, scale=1.0):
+    return "-" if value is None else format(scale * value, spec)
+
+
+def markdown(head, rows):
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines += ["| " + " | ".join(str(c).replace("|", "/") for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def large_inputs(mesh_dir, out_dir):
+    """{splits: path} for the bunny as it is (0), split once (1) and twice (2)."""
+    bunny = os.path.join(mesh_dir, "pmp_bunny.off")
+    return {0: bunny, 1: bench_inputs.subdivided(bunny, out_dir, 1), 2: bench_inputs.subdivided(bunny, out_dir, 2)}
+
+
+def stage(row, name):
+    return row.get("report", {}).get("timings", {}).get(name)
+
+
+def scale(run_cli, cli, mesh_dir, out_dir):
+    """Rows of the scale table; the large case (1.1M triangles, 100k sites) is also returned."""
+    inputs = large_inputs(mesh_dir, out_dir)
+    runs, large = [], None
+    for splits, sites in SCALE_RUNS:
+        row = run_cli(cli, inputs[splits], out_dir, "scale_split%d_%d" % (splits, sites), sites)
+        runs.append(row)
+        if splits == 2 and sites == LARGE_SITES:
+            large = row
+    return runs, large
+
+
+def scale_table(runs):
+    head = ["input triangles", "sites", "evaluations", "normals s", "optimize s", "ms per evaluation",
+            "ns per evaluation per (site + triangle)", "wall s", "peak MiB", "kappa min", "kappa mean",
+            "Hausdorff %"]
+    rows = []
+    for row in runs:
+        report = row.get("report")
+        if report is None:
+            rows.append([row["name"], row["target"], "failed: " + row["error"]] + ["-"] * (len(head) - 3))
+            continue
+        triangles, sites, evaluations = report["input"]["triangles"], report["sites"], report["evaluations"]
+        per_eval = stage(row, "optimize") / max(1, evaluations)
+        rows.append(["%d" % triangles, sites, evaluations, fmt(stage(row, "normals"), ".2f"),
+                     fmt(stage(row, "optimize"), ".2f"), fmt(per_eval, ".1f", 1e3),
+                     fmt(per_eval / (sites + triangles), ".0f", 1e9), fmt(row["wall"], ".1f"),
+                     fmt(row.get("rss"), ".0f"), fmt(report["output"]["kappa_min"], ".3f"),
+                     fmt(report["output"]["kappa_mean"], ".3f"), fmt(report["hausdorff_relative"], ".3f", 100.0)])
+    return markdown(head, rows)
+
+
+class BusyCore:
+    """Another process keeping one core busy while the block runs."""
+
+    def __enter__(self):
+        self.proc = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+        return self
+
+    def __exit__(self, *exc):
+        self.proc.kill()
+        self.proc.wait()
+
+
+def threads(run_cli, cli, mesh_dir, out_dir, large):
+    """Rows of the threads table: (case, one-thread row, two-thread row) pairs, then the busy-core
+    rows (what, wall s)."""
+    t13 = os.path.join(mesh_dir, "gmsh_t13_data.stl")
+    pairs = [("t13, 6000 vertices",
+              run_cli(cli, t13, out_dir, "threads1_t13", 6000, ["--threads", "1"]),
+              run_cli(cli, t13, out_dir, "threads2_t13", 6000, ["--threads", "2"]))]
+    if large is not None:
+        big = large_inputs(mesh_dir, out_dir)[2]
+        pairs.append(("1.1M triangles, 100k vertices",
+                      run_cli(cli, big, out_dir, "threads1_large", LARGE_SITES, ["--threads", "1"]),
+                      large))
+    busy = []
+    with BusyCore():
+        row = run_cli(cli, t13, out_dir, "busy_t13", 6000, ["--threads", "2"])
+        busy.append(("LiftRemesh, 2 threads (waiting threads sleep: the CLI's default)", row["wall"]))
+        row = run_cli(cli, t13, out_dir, "busy_t13_active", 6000, ["--threads", "2"],
+                      env={"OMP_WAIT_POLICY": "ACTIVE"})
+        busy.append(("LiftRemesh, 2 threads, OMP_WAIT_POLICY=ACTIVE (waiting threads spin)", row["wall"]))
+        row = run_cli(cli, t13, out_dir, "busy_t13_1", 6000, ["--threads", "1"])
+        busy.append(("LiftRemesh, 1 thread", row["wall"]))
+        gmsh = bench_gmsh.timed(t13, 6000, out_dir)
+        busy.append(("Gmsh (single-threaded)", gmsh.get("wall")))
+    return pairs, busy
+
+
+def threads_tables(pairs, busy):
+    head = ["case", "optimize s, 1 thread", "optimize s, 2 threads", "speed-up", "wall s, 1 thread",
+            "wall s, 2 threads", "outputs identical"]
+    rows = []
+    for name, one, two in pairs:
+        t1, t2 = stage(one, "optimize"), stage(two, "optimize")
+        same = ("report" in one and "report" in two and filecmp.cmp(one["output"], two["output"], shallow=False))
+        rows.append([name, fmt(t1, ".2f"), fmt(t2, ".2f"), fmt(t1 / t2 if t1 and t2 else None, ".2f"),
+                     fmt(one["wall"], ".2f"), fmt(two["wall"], ".2f"), "yes" if same else "NO"])
+    busy_rows = [[what, fmt(wall, ".2f")] for what, wall in busy]
+    return markdown(head, rows) + "\n\nt13 at 6000 vertices with another process busy on one core:\n\n" + \
+        markdown(["run", "wall s"], busy_rows)
+
+
+def fig9(run_cli, cli, out_dir):
+    part = bench_inputs.fine_bracket(out_dir)
+    row = run_cli(cli, part, out_dir, "fig9_bracket", 50000)
+    return row, bench_gmsh.timed(part, 50000, out_dir)
+
+
+def fig9_table(row, gmsh):
+    report = row.get("report", {})
+    out = report.get("output", {})
+    head = ["input triangles", "sites", "output triangles", "wall s", "optimize s", "peak MiB", "kappa min",
+            "kappa mean", "Hausdorff %", "Gmsh wall s", "Gmsh kappa min"]
+    cells = [report.get("input", {}).get("triangles", "-"), report.get("sites", "-"), out.get("triangles", "-"),
+             fmt(row["wall"], ".2f"), fmt(stage(row, "optimize"), ".2f"), fmt(row.get("rss"), ".0f"),
+             fmt(out.get("kappa_min"), ".3f"), fmt(out.get("kappa_mean"), ".3f"),
+             fmt(report.get("hausdorff_relative"), ".3f", 100.0), fmt(gmsh.get("wall"), ".2f"),
+             fmt(gmsh.get("kappa_min"), ".3f") if "error" not in gmsh else gmsh["error"]]
+    return markdown(head, [cells])
