@@ -22,8 +22,8 @@ struct ObjectiveAccumulator {
     std::vector<ChunkSlot<double>> values;
     ChunkSiteSums<Vec> gradients;
 
-    ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig)
-        : surface(s), sites(v), sigma(sig), values(rvd_chunks(s)), gradients(s, Vec::Zero()) {}
+    ObjectiveAccumulator(const LiftedSurface& s, const LiftedPoints& v, double sig, const RvdCache* cache)
+        : surface(s), sites(v), sigma(sig), values(rvd_chunks(s)), gradients(s, Vec::Zero(), cache) {}
 
     double total(LiftedPoints& gradient) const {
         double value = 0.0;
@@ -95,7 +95,7 @@ struct ObjectiveAccumulator {
 template <int D>
 double objective_fixed(const LiftedSurface& surface, const LiftedPoints& sites, double sigma, int threads,
                        LiftedPoints& gradient, RvdCache* cache) {
-    ObjectiveAccumulator<D> acc(surface, sites, sigma);
+    ObjectiveAccumulator<D> acc(surface, sites, sigma, cache);
     compute_rvd(surface, sites, threads, [&acc](int chunk, const RvdPolygon& poly) { acc(chunk, poly); }, cache);
     return acc.total(gradient);
 }

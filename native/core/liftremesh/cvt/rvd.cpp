@@ -4,6 +4,7 @@
 #include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/spatial/neighbor_search.h"
+#include "liftremesh/system/threads.h"
 
 #include <algorithm>
 #include <cmath>
@@ -198,6 +199,26 @@ Staleness refresh_neighbours(const LiftedPoints& positions, int threads, RvdCach
     return st;
 }
 
+} // namespace
+
+// Per-site scratch valid while a stamp equals the current triangle: its planar coordinates,
+// computed once per triangle, and whether the site was queued already.
+struct SiteScratch {
+    int32_t planar_stamp = -1, visited_stamp = -1;
+    PlanarSite planar;
+}; // one cache line holds two
+
+struct RvdScratch {
+    struct OfThread {
+        std::vector<SiteScratch> site;
+        //! Per site, the chunk that last visited it and its rank there (RvdPolygon::chunk_rank).
+        std::vector<std::pair<int32_t, int32_t>> rank;
+    };
+    std::vector<std::unique_ptr<OfThread>> threads; // apart, so that threads do not share lines
+};
+
+namespace {
+
 template <int D>
 void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
                        const PolygonVisitor& visit, RvdCache& cache) {
@@ -229,6 +250,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
     // diagram wherever the host slows them down unevenly; many smaller chunks even that out.
     if (static_cast<long>(cache.work.size()) != nf) cache.work.assign(nf, 1);
     const int chunks = rvd_chunks(surface);
+    cache.chunk_sites.assign(chunks, 0);
     std::vector<long> bounds(static_cast<size_t>(chunks) + 1, nf);
     bounds[0] = 0;
     {
@@ -242,6 +264,10 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         }
     }
 
+    if (!cache.scratch) cache.scratch = std::make_shared<RvdScratch>();
+    while (static_cast<int>(cache.scratch->threads.size()) < threads)
+        cache.scratch->threads.push_back(std::make_unique<RvdScratch::OfThread>());
+
 #pragma omp parallel num_threads(threads)
     {
         auto buffers = std::make_unique<Polygon2[]>(2); // swapped by pointer after each clip
@@ -251,15 +277,11 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
         std::vector<int32_t> queue, more;
         std::vector<double> more_d2;
         std::vector<int32_t> candidates;
-        // Per-site scratch valid while stamp[site] == current triangle: planar coordinates,
-        // computed once per triangle, and whether the site was queued already.
-        struct SiteScratch {
-            int32_t planar_stamp = -1, visited_stamp = -1;
-            PlanarSite planar;
-        }; // one cache line holds two
-        std::vector<SiteScratch> scratch_of(ns);
-        // Per site, the chunk that last visited it and its rank there (RvdPolygon::chunk_rank).
-        std::vector<std::pair<int32_t, int32_t>> rank_of(ns, {-1, -1});
+        RvdScratch::OfThread& mine = *cache.scratch->threads[thread_index()];
+        std::vector<SiteScratch>& scratch_of = mine.site;
+        std::vector<std::pair<int32_t, int32_t>>& rank_of = mine.rank;
+        scratch_of.assign(ns, SiteScratch{});
+        rank_of.assign(ns, {-1, -1});
 #pragma omp for schedule(dynamic, 1)
         for (int chunk = 0; chunk < chunks; ++chunk) {
             int32_t ranks = 0; // sites of this chunk so far
@@ -431,6 +453,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 }
                 cache.work[i] = work;
             }
+            cache.chunk_sites[chunk] = ranks;
         }
     }
 }
@@ -454,7 +477,7 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
 
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
                                       RvdCache* cache) {
-    ChunkSiteSums<double> areas(surface, 0.0);
+    ChunkSiteSums<double> areas(surface, 0.0, cache);
     compute_rvd(
         surface, sites, threads, [&](int chunk, const RvdPolygon& poly) { areas.of(chunk, poly) += polygon_area(poly); },
         cache);

@@ -9,6 +9,9 @@ namespace liftremesh {
 //! The number of threads actually used for a requested count (0 = all cores).
 int resolve_threads(int threads);
 
+//! The calling thread's number in the parallel region it runs (0 outside any).
+int thread_index();
+
 //! Makes `threads` (> 0) the default thread count of the OpenMP regions this thread starts, until
 //! it goes out of scope, when the caller's count comes back. 0 leaves the default as it is.
 //! Only the calling thread's setting changes (OpenMP keeps it per thread), so a remeshing run on
