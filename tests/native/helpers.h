@@ -115,6 +115,12 @@ inline Mesh joined(const Mesh& a, const Mesh& b) {
     return both;
 }
 
+//! `mesh` with every triangle turned (corners 1 and 2 swapped): a closed one faces inward.
+inline Mesh turned(Mesh mesh) {
+    mesh.triangles.col(1).swap(mesh.triangles.col(2));
+    return mesh;
+}
+
 //! The defects of a careless STL export (carelessly_exported): which, and how many.
 struct CarelessExport {
     int turn_every = 3;           //!< every k-th facet turned (0: each with probability 1/3, seeded)
