@@ -41,7 +41,18 @@ QUALITY = {
     "nonmanifold_vertices": "vertices whose triangles form more than one fan (parts touching at a point)",
     "extra_vertex_fans": "the fans beyond the first at the non-manifold vertices: how many more "
                          "vertices a manifold copy has, and so how much higher its Euler characteristic is",
-    "oriented": "every manifold edge is used once in each direction",
+    "oriented": "every manifold edge is used once in each direction: neighbours agree, which says "
+                "nothing of whether a closed component faces outward (`inward_components` does)",
+    "components": "connected components (triangles sharing a vertex, as the pieces remeshed on their "
+                  "own are split)",
+    "closed_components": "components with no edge used by one triangle only",
+    "inward_components": "closed components facing inward: negative signed volume. Legitimate only as "
+                         "the cavity of a hollowed solid",
+    "cavities": "inward components inside another closed component (the winding number of the others "
+                "at a point of it is 1 or more): a hollowed solid's inner walls",
+    "component_list": "the 20 largest components by area, largest first: objects with `triangles`, "
+                      "`area`, `closed`, `signed_volume` (the volume enclosed, by the divergence "
+                      "theorem; negative facing inward; null for an open one) and `cavity`",
     "euler_characteristic": "V - E + F (2 for a sphere, 2 - 2g for a closed surface of genus g)",
     "sharp_edge_length": "total length of the edges whose two faces turn by more than 60 degrees",
     "self_intersections": "pairs of triangles passing through each other (a side of one through the "
@@ -83,6 +94,11 @@ FIELDS = {
     "vertices_moved": "vertices moved at the end: for triangle quality, onto knife edges, out of crossings",
     "boundary_vertices_snapped": "output boundary vertices moved onto the input's boundary, its "
                                  "corners included (0 for a closed input)",
+    "stray_components_removed": "small closed pieces of the output standing for no part of the input "
+                                "(beyond its count of components, or of inward ones), removed before "
+                                "the untangling: at most 1% of the area of the input's smallest "
+                                "component (also a warning)",
+    "stray_inward_removed": "of those, the pieces facing inward",
     "cracks_closed": "boundary loops of the input the output does not have: cracks narrower than the "
                      "cells (unwelded seams, slits), closed as the part is",
     "vertex_fans_split": "fans of the input's non-manifold vertices the output gives a vertex of their own",
@@ -94,6 +110,9 @@ FIELDS = {
 }
 
 WARNINGS = [
+    "the output has more components than the input (plus the fans of its non-manifold vertices split)",
+    "the output has more closed components facing inward than the input (its cavities)",
+    "small stray pieces were removed (`stray_components_removed`)",
     "the output's Euler characteristic is not `expected_euler_characteristic`: parts thinner than "
     "the target edge length merged or broke (the paper's Section 2.2)",
     "closed parts kept their input triangles (`parts_kept`)",

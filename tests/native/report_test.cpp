@@ -44,13 +44,13 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     for (const char* key :
          {"input", "output", "input_duplicates_removed", "input_degenerate_removed", "input_facets_turned", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
           "evaluations", "energy_initial", "energy_final", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
-          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "cracks_closed",
+          "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "stray_components_removed", "stray_inward_removed", "cracks_closed",
           "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
     for (const char* key :
          {"vertices", "triangles", "kappa_min", "kappa_mean", "kappa_histogram", "min_angle_deg", "boundary_edges",
           "boundary_loops", "nonmanifold_edges", "nonmanifold_vertices", "extra_vertex_fans", "oriented", "euler_characteristic", "sharp_edge_length",
-          "self_intersections"})
+          "self_intersections", "components", "closed_components", "inward_components", "cavities", "component_list"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 2u) << key;
     EXPECT_NE(json.find("\"kappa_histogram\": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]"), std::string::npos) << json;
     EXPECT_NE(json.find("\"kappa_mean\": 0.483123457,"), std::string::npos) << json; // 9 digits
@@ -183,4 +183,65 @@ TEST(Report, PartsTouchingAtAVertexComingOutApartIsNoWarning) {
     touching.output.euler_characteristic = 3;
     touching.output.extra_vertex_fans = 1; // the pinch kept: the same topology
     EXPECT_TRUE(report_warnings(touching).empty());
+}
+
+// The frame's case: the output has two small closed components facing inward beside the part.
+// Kept, they are warned of twice (more components, inward ones); removed, the removal is.
+TEST(Report, WarnsOfComponentsAndInwardOnesTheSourceDoesNotHave) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = 2;
+    r.input.components = r.input.closed_components = 1;
+    r.output.components = r.output.closed_components = 3;
+    r.output.inward_components = 2;
+    r.output.euler_characteristic = 6;
+    r.warnings = report_warnings(r);
+    ASSERT_EQ(r.warnings.size(), 3u);
+    EXPECT_NE(r.warnings[0].find("topology differs"), std::string::npos) << r.warnings[0];
+    EXPECT_NE(r.warnings[1].find("3 components, the source 1"), std::string::npos) << r.warnings[1];
+    EXPECT_NE(r.warnings[2].find("2 closed components facing inward (negative volume), the source 0"), std::string::npos)
+        << r.warnings[2];
+
+    r.output = r.input;
+    r.stray_components_removed = r.stray_inward_removed = 2;
+    r.warnings = report_warnings(r);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("2 small closed pieces standing for no part of the source (2 facing inward) removed"),
+              std::string::npos)
+        << r.warnings[0];
+    EXPECT_NE(to_json(r).find("\"stray_components_removed\": 2,"), std::string::npos);
+
+    // A hollowed solid: its cavity comes out facing inward, as the source's does.
+    RemeshReport hollow;
+    hollow.input.components = hollow.output.components = 2;
+    hollow.input.inward_components = hollow.output.inward_components = 1;
+    EXPECT_TRUE(report_warnings(hollow).empty());
+    // Two solids touching at a vertex come out apart: a component per fan, no warning.
+    RemeshReport touching;
+    touching.input.components = 1;
+    touching.input.extra_vertex_fans = 1;
+    touching.input.euler_characteristic = 3;
+    touching.output.components = 2;
+    touching.output.euler_characteristic = 4;
+    EXPECT_EQ(expected_components(touching), 2);
+    EXPECT_TRUE(report_warnings(touching).empty());
+}
+
+TEST(Report, ComponentListIsJson) {
+    RemeshReport r;
+    MeshComponent solid;
+    solid.triangles = 12;
+    solid.area = 6.0;
+    solid.closed = true;
+    solid.signed_volume = -1.0;
+    solid.cavity = true;
+    MeshComponent patch;
+    patch.triangles = 2;
+    patch.area = 1.0;
+    r.output.component_list = {solid, patch};
+    const std::string json = to_json(r);
+    EXPECT_NE(json.find("\"component_list\": [{\"triangles\": 12, \"area\": 6, \"closed\": true, \"signed_volume\": -1, "
+                        "\"cavity\": true}, {\"triangles\": 2, \"area\": 1, \"closed\": false, \"signed_volume\": null, "
+                        "\"cavity\": false}]"),
+              std::string::npos)
+        << json;
 }

@@ -11,6 +11,7 @@
 #include "liftremesh/lift/normals.h"
 #include "liftremesh/lift/thin_walls.h"
 #include "liftremesh/measure/quality.h"
+#include "liftremesh/mesh/components.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/mesh/input_cleaning.h"
 #include "liftremesh/mesh/mesh_io.h"
@@ -18,6 +19,7 @@
 #include "liftremesh/repair/hole_filling.h"
 #include "liftremesh/repair/patch_refinement.h"
 #include "liftremesh/repair/repair.h"
+#include "liftremesh/repair/stray_components.h"
 #include "liftremesh/spatial/neighbor_search.h"
 #include "liftremesh/spatial/reference.h"
 #include "liftremesh/spatial/self_intersection.h"
@@ -433,6 +435,16 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     }
     if (out.triangles.rows() == 0)
         throw TopologyFailure("no part of the surface came out: too few vertices for this surface");
+
+    // Closed pieces that stand for no part of the input (stray_components.h): bubbles the
+    // triangulation closed where a member is thinner than the cells. Counted against the whole
+    // input, once every piece is in; before the untangling, which then sees what is handed on.
+    clock.begin("repair");
+    const StrayComponentStats strays =
+        remove_stray_components(out, stray_component_params(mesh_components(input), report.input.extra_vertex_fans));
+    report.stray_components_removed = strays.removed;
+    report.stray_inward_removed = strays.inward_removed;
+    clock.end();
 
     // The whole input's tree: the only piece's, or built once the pieces' trees are freed.
     const AabbTree input_tree = pieces.size() == 1 ? std::move(*pieces[0].tree) : AabbTree(input);

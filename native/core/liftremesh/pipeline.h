@@ -24,7 +24,8 @@ struct RemeshResult {
 //!  4. restricted Delaunay triangulation (Eq. 4) projected to R^3 (Algorithm 3, line 11);
 //!  5. a clean oriented manifold (repair.h), holes the input does not have filled (5.2.2);
 //!     on an open input, the output's boundary vertices put onto the input's boundary (boundary_snap.h);
-//!     the pieces together, triangles passing through each other untangled (untangle.h);
+//!     the pieces together: small closed pieces standing for no part of the input removed
+//!     (stray_components.h), triangles passing through each other untangled (untangle.h);
 //!  6. quality report (Eq. 26, Hausdorff distance to the input).
 //! Throws InvalidInput (bad mesh or parameters), NumericalFailure, TopologyFailure, Cancelled.
 RemeshResult remesh(const Mesh& input, const RemeshParams& params, const ProgressCallback& progress = {});

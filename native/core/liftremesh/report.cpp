@@ -66,6 +66,14 @@ std::string json_array(const Items& items, Format format) {
     return out + "]";
 }
 
+//! A component as a one-line JSON object; signed_volume null for an open one.
+std::string json_component(const MeshComponent& c) {
+    return "{\"triangles\": " + json_number(c.triangles) + ", \"area\": " + json_number(c.area) +
+           ", \"closed\": " + (c.closed ? "true" : "false") +
+           ", \"signed_volume\": " + (c.closed ? json_number(c.signed_volume) : std::string("null")) +
+           ", \"cavity\": " + (c.cavity ? "true" : "false") + "}";
+}
+
 std::string json_quality(const MeshQuality& q, int indent) {
     const std::string histogram = json_array(q.kappa_histogram, [](long n) { return json_number(n); });
     return json_object({{"vertices", json_number(q.vertices)},
@@ -80,6 +88,11 @@ std::string json_quality(const MeshQuality& q, int indent) {
                         {"nonmanifold_vertices", json_number(q.nonmanifold_vertices)},
                         {"extra_vertex_fans", json_number(q.extra_vertex_fans)},
                         {"oriented", q.oriented ? "true" : "false"},
+                        {"components", json_number(q.components)},
+                        {"closed_components", json_number(q.closed_components)},
+                        {"inward_components", json_number(q.inward_components)},
+                        {"cavities", json_number(q.cavities)},
+                        {"component_list", json_array(q.component_list, json_component)},
                         {"euler_characteristic", json_number(static_cast<long>(q.euler_characteristic))},
                         {"sharp_edge_length", json_number(q.sharp_edge_length)},
                         {"self_intersections", json_number(q.self_intersections)}},
@@ -113,6 +126,10 @@ long vertex_fans_split(const RemeshReport& report) {
     return std::max(0L, report.input.extra_vertex_fans - report.output.extra_vertex_fans);
 }
 
+long expected_components(const RemeshReport& report) {
+    return report.input.components + vertex_fans_split(report);
+}
+
 int expected_euler_characteristic(const RemeshReport& report) {
     return report.input.euler_characteristic + static_cast<int>(cracks_closed(report) + vertex_fans_split(report));
 }
@@ -129,6 +146,18 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         std::to_string(out.euler_characteristic) + ", source " + std::to_string(in.euler_characteristic) +
                         "): parts thinner than the target edge length merged or broke; ask for more vertices or a "
                         "smaller edge length");
+    if (out.components > expected_components(report))
+        found.push_back("the result has " + std::to_string(out.components) + " components, the source " +
+                        std::to_string(in.components) + ": pieces the source does not have");
+    if (out.inward_components > in.inward_components)
+        found.push_back("the result has " + std::to_string(out.inward_components) +
+                        " closed components facing inward (negative volume), the source " +
+                        std::to_string(in.inward_components) + ": FEM and TetGen refuse them");
+    if (report.stray_components_removed > 0)
+        found.push_back(std::to_string(report.stray_components_removed) + " small closed " +
+                        (report.stray_components_removed == 1 ? "piece" : "pieces") + " standing for no part of the source (" +
+                        std::to_string(report.stray_inward_removed) +
+                        " facing inward) removed from the result; ask for more vertices or a smaller edge length");
     if (report.parts_kept > 0)
         found.push_back("of the source's " + std::to_string(report.parts) + " parts, " +
                         std::to_string(report.parts_kept) +
@@ -175,6 +204,8 @@ std::string to_json(const RemeshReport& report) {
                         {"edges_flipped", json_number(report.edges_flipped)},
                         {"vertices_moved", json_number(report.vertices_moved)},
                         {"boundary_vertices_snapped", json_number(report.boundary_vertices_snapped)},
+                        {"stray_components_removed", json_number(report.stray_components_removed)},
+                        {"stray_inward_removed", json_number(report.stray_inward_removed)},
                         {"cracks_closed", json_number(cracks_closed(report))},
                         {"vertex_fans_split", json_number(vertex_fans_split(report))},
                         {"expected_euler_characteristic",

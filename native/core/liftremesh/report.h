@@ -42,6 +42,9 @@ struct RemeshReport {
     long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h), for triangle quality
                                          //!< at the end (quality_polish.h), out of crossings (untangle.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
+    long stray_components_removed = 0;   //!< small closed pieces standing for no part of the input,
+                                         //!< removed (stray_components.h)
+    long stray_inward_removed = 0;       //!< of those, facing inward
     std::vector<StageTime> timings;
     //! What a user should know about a result that is not a faithful copy of its input, as
     //! sentences (report_warnings()); empty when all is well.
@@ -63,7 +66,13 @@ long vertex_fans_split(const RemeshReport& report);
 //! one per crack closed and one per vertex fan split (each is the repair asked for).
 int expected_euler_characteristic(const RemeshReport& report);
 
-//! The warnings of a finished report: another topology than the input's (parts thinner than
+//! Components the result may have: the input's, plus a piece per extra fan of its non-manifold
+//! vertices that the result splits (vertex_fans_split).
+long expected_components(const RemeshReport& report);
+
+//! The warnings of a finished report: components the input does not have (more than
+//! expected_components), closed components facing inward beyond the input's (its cavities),
+//! stray pieces removed (stray_components_removed), another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input
 //! (holes), closed parts of the input that keep its triangles (parts_kept), triangles passing through each other (output.self_intersections, whatever the

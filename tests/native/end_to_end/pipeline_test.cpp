@@ -421,6 +421,15 @@ TEST_P(SharedMesh, ClosedOrientedManifoldWithGoodTrianglesCloseToTheInput) {
     EXPECT_EQ(count_self_intersections(r.mesh, AabbTree(r.mesh)), 0);
     EXPECT_EQ(out.self_intersections, 0);
     EXPECT_EQ(r.report.input.self_intersections, 0);
+    // As many components as the input, none facing inward, each enclosing the input's volume
+    // (to 1%): no stray piece is handed on, and none was needed to be removed.
+    EXPECT_EQ(out.components, r.report.input.components);
+    EXPECT_EQ(out.inward_components, r.report.input.inward_components);
+    EXPECT_EQ(r.report.stray_components_removed, 0);
+    ASSERT_EQ(out.component_list.size(), r.report.input.component_list.size());
+    for (size_t c = 0; c < out.component_list.size(); ++c)
+        EXPECT_NEAR(out.component_list[c].signed_volume, r.report.input.component_list[c].signed_volume,
+                    0.01 * std::abs(r.report.input.component_list[c].signed_volume));
 }
 
 INSTANTIATE_TEST_SUITE_P(Acceptance, SharedMesh,

@@ -170,6 +170,40 @@ TEST(Quality, NonManifoldEdgesAndVertices) {
     EXPECT_EQ(qg.euler_characteristic, 3);
 }
 
+// The frame's case: a part beside two small inside-out boxes is "oriented" (neighbours agree)
+// but has two closed components facing inward, which the counts give; the list holds the
+// largest components first with their signed volumes, at most kListedComponents of them.
+TEST(Quality, ComponentsCountsAndList) {
+    Mesh part = test::make_cube(2.0, 4); // volume 64
+    for (int k = 0; k < 2; ++k) {
+        part = test::joined(part, test::turned(test::make_box({5.0 + 2 * k, 0, 0}, {5.5 + 2 * k, 0.5, 0.5 + k}, 1)));
+    }
+    const MeshQuality q = measure_quality(part);
+    EXPECT_TRUE(q.oriented);
+    EXPECT_EQ(q.components, 3);
+    EXPECT_EQ(q.closed_components, 3);
+    EXPECT_EQ(q.inward_components, 2);
+    EXPECT_EQ(q.cavities, 0);
+    ASSERT_EQ(q.component_list.size(), 3u);
+    EXPECT_NEAR(q.component_list[0].signed_volume, 64.0, 1e-12);
+    EXPECT_NEAR(q.component_list[1].signed_volume, -0.375, 1e-12); // 0.5 x 0.5 x 1.5, the larger
+    EXPECT_NEAR(q.component_list[2].signed_volume, -0.125, 1e-12);
+
+    Mesh many = test::make_square(1.0, 1);
+    for (int k = 1; k < kListedComponents + 5; ++k) {
+        Mesh square = test::make_square(1.0 + 0.01 * k, 1);
+        square.points.col(2).array() += k;
+        many = test::joined(many, square);
+    }
+    const MeshQuality m = measure_quality(many);
+    EXPECT_EQ(m.components, kListedComponents + 5);
+    EXPECT_EQ(m.closed_components, 0);
+    ASSERT_EQ(m.component_list.size(), static_cast<size_t>(kListedComponents));
+    EXPECT_NEAR(m.component_list.front().area, std::pow(1.0 + 0.01 * (kListedComponents + 4), 2), 1e-12);
+    for (size_t k = 1; k < m.component_list.size(); ++k)
+        EXPECT_GT(m.component_list[k - 1].area, m.component_list[k].area);
+}
+
 TEST(Quality, SharpEdgeLengthOfCubeAndSphere) {
     const double s = 0.75; // cube [-s, s]^3: 12 edges of length 2 s
     for (int n : {1, 3}) {

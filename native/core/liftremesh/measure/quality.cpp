@@ -203,6 +203,20 @@ std::vector<double> distances_to(const std::vector<Eigen::Vector3d>& points, con
     return d;
 }
 
+// The components' counts and the largest of them (MeshQuality::components ... component_list).
+void measure_components(const Mesh& mesh, MeshQuality& q) {
+    MeshComponents split = mesh_components(mesh);
+    q.components = static_cast<long>(split.components.size());
+    q.closed_components = split.closed();
+    q.inward_components = split.inward();
+    q.cavities = split.cavities();
+    std::vector<MeshComponent>& list = split.components;
+    const auto listed = list.begin() + std::min<std::ptrdiff_t>(kListedComponents, static_cast<std::ptrdiff_t>(list.size()));
+    std::partial_sort(list.begin(), listed, list.end(),
+                      [](const MeshComponent& a, const MeshComponent& b) { return a.area > b.area; });
+    q.component_list.assign(list.begin(), listed);
+}
+
 } // namespace
 
 MeshQuality measure_quality(const Mesh& mesh, const SharpEdgeCriterion& sharp) {
@@ -215,6 +229,7 @@ MeshQuality measure_quality(const Mesh& mesh, const SharpEdgeCriterion& sharp) {
     measure_vertices(mesh, q);
     // euler_characteristic(mesh), from the counts at hand instead of a second sort of the edges.
     q.euler_characteristic = static_cast<int>(q.vertices - edges + q.triangles);
+    measure_components(mesh, q);
     return q;
 }
 

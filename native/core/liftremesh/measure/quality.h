@@ -2,10 +2,12 @@
 // sharp-edge length, and the two-sided Hausdorff distance between two meshes.
 #pragma once
 
+#include "liftremesh/mesh/components.h"
 #include "liftremesh/mesh/mesh.h"
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace liftremesh {
 
@@ -26,13 +28,28 @@ struct MeshQuality {
     //! their apex: 1): how many more vertices a manifold copy of the mesh has, a vertex per fan,
     //! and so how much higher its Euler characteristic is.
     long extra_vertex_fans = 0;
-    bool oriented = true;                  //!< every manifold edge is used once in each direction
+    //! Every manifold edge is used once in each direction: neighbours agree, which says nothing
+    //! of whether a closed component faces outward (inward_components does).
+    bool oriented = true;
+    //! Connected components (triangles sharing a vertex: components.h), the closed ones among
+    //! them, the closed ones facing inward (negative signed volume), and of those the cavities
+    //! (inside another closed component, as a hollowed solid's inner wall).
+    long components = 0;
+    long closed_components = 0;
+    long inward_components = 0;
+    long cavities = 0;
+    //! The kListedComponents largest components by area, largest first, each with its triangle
+    //! count, area, closedness, signed volume and cavity flag.
+    std::vector<MeshComponent> component_list;
     int euler_characteristic = 0;          //!< V - E + F
     double sharp_edge_length = 0.0;        //!< total length of the edges SharpEdgeCriterion counts
     //! Pairs of triangles passing through each other (count_self_intersections, which needs an
     //! AABB tree: measure_quality leaves 0 here, the pipeline counts them for input and output).
     long self_intersections = 0;
 };
+
+//! How many components MeshQuality::component_list lists at most.
+constexpr int kListedComponents = 20;
 
 //! Which edges MeshQuality::sharp_edge_length counts.
 struct SharpEdgeCriterion {
