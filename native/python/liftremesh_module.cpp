@@ -2,6 +2,7 @@
 // includes pybind11. Parameter names, kinds, ranges, defaults and help come from the core's
 // parameter_table(), so the CLI, this module and the FreeCAD workbench share one source of truth.
 #include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/components.h"
 #include "liftremesh/params.h"
 #include "liftremesh/pipeline.h"
 #include "liftremesh/report.h"
@@ -282,6 +283,41 @@ py::array_t<int32_t> crossing_triangles(const py::object& points_in, const py::o
     return out;
 }
 
+// The connected components of a surface (mesh/components.h) as a dict of arrays, one entry per
+// component, and the component of each triangle.
+py::dict components(const py::object& points_in, const py::object& triangles_in) {
+    Mesh mesh;
+    mesh.points = to_points(points_in);
+    mesh.triangles = to_triangles(triangles_in, mesh.points.rows());
+    MeshComponents split;
+    {
+        py::gil_scoped_release release;
+        split = mesh_components(mesh);
+    }
+    const auto k = static_cast<py::ssize_t>(split.components.size());
+    py::array_t<bool> closed(k), cavity(k);
+    py::array_t<double> volume(k), area(k);
+    py::array_t<int64_t> count(k);
+    for (py::ssize_t c = 0; c < k; ++c) {
+        const MeshComponent& part = split.components[static_cast<size_t>(c)];
+        closed.mutable_at(c) = part.closed;
+        cavity.mutable_at(c) = part.cavity;
+        volume.mutable_at(c) = part.closed ? part.signed_volume : std::nan("");
+        area.mutable_at(c) = part.area;
+        count.mutable_at(c) = part.triangles;
+    }
+    py::array_t<int32_t> label(static_cast<py::ssize_t>(split.label.size()));
+    std::copy(split.label.begin(), split.label.end(), label.mutable_data());
+    py::dict out;
+    out["closed"] = closed;
+    out["signed_volume"] = volume;
+    out["cavity"] = cavity;
+    out["area"] = area;
+    out["triangles"] = count;
+    out["label"] = label;
+    return out;
+}
+
 // The closest point of a reference surface to each point, as an (n, 3) float64 array.
 py::array_t<double> closest_points(const py::object& points_in, const py::object& surface_points_in,
                                    const py::object& surface_triangles_in) {
@@ -358,6 +394,17 @@ other (touching and coplanar overlaps are not crossing), as a tetrahedral mesher
 
 points: (n, 3) float64 array; triangles: (m, 3) integer array of vertex indices.
 Returns a (k, 2) int32 array of triangle indices (s, t), s < t, sorted; empty when none cross.
+Raises InvalidInput (a ValueError) for bad arrays. The GIL is released while it runs.)doc");
+    m.def("components", &components, py::arg("points"), py::arg("triangles"),
+          R"doc(The connected components of a triangle surface (triangles sharing a vertex), measured as a
+solid's boundary: the report's "components" of input and output.
+
+points: (n, 3) float64 array; triangles: (m, 3) integer array of vertex indices.
+Returns a dict of arrays with one entry per component, in order of first triangle:
+"closed" (k,) bool (no edge used by one triangle only); "signed_volume" (k,) float64, the volume
+enclosed by a closed one, negative when it faces inward, NaN for an open one; "cavity" (k,) bool,
+facing inward and inside the other closed components (a hollowed solid's inner wall); "area" (k,)
+float64; "triangles" (k,) int64; and "label" (m,) int32, each triangle's component.
 Raises InvalidInput (a ValueError) for bad arrays. The GIL is released while it runs.)doc");
     m.def("closest_points", &closest_points, py::arg("points"), py::arg("surface_points"),
           py::arg("surface_triangles"),
