@@ -33,11 +33,22 @@ and FEM's edge loads add up to the full edge length. A move that would fold or c
 (its area, projected on its old normal, dropping below MIN_AREA_RATIO of what it was) is undone for
 that triangle's nodes. Nodes near edges shared by two faces are not put on those edges.
 
+Refusal. A surface with a closed component facing inward that is no cavity of another (an
+inside-out piece: it bounds no solid), or with more components, or more facing inward, than what it
+was made from (its remesh report's input, or its source mesh) is refused (SurfaceRefused, in words
+saying which and where) before anything is made: FEM's shell elements would take their normals and
+their mass from a piece that stands for nothing, and TetGen refuses such a surface
+(fem_solid.py refuses it the same way).
+
 Needs FreeCAD's App modules only (Fem, Part, Mesh): macros and tests call it without the GUI.
 """
+import json
+
+import numpy as np
 
 import FreeCAD
 from . import document
+from . import native
 
 # Largest move onto the geometry, as a fraction of the local mesh edge length (module doc).
 VERTEX_SNAP = 1.0   # a 90-degree corner's nearest node is about 0.7 h away
@@ -45,6 +56,12 @@ EDGE_SNAP = 0.75    # boundary nodes lie 0.4 to 0.6 h inside the boundary
 FACE_SNAP = 0.25    # nodes are on the tessellated surface: chord error, rounding
 MIN_AREA_RATIO = 0.25
 TRANSACTION = "FEM shell mesh"
+SHOWN = 3  # places named in a refusal
+
+
+class SurfaceRefused(ValueError):
+    """The surface cannot be meshed for FEM: open, non-manifold, crossing itself (fem_solid.py), or
+    with components facing inward or not in its source. The message says which and where."""
 
 
 # ----- mesh -> FEM mesh ---------------------------------------------------------------------------
@@ -85,6 +102,72 @@ def build_fem_mesh(points, triangles):
     for element_id, (a, b, c) in enumerate(triangles, 1):
         fem_mesh.addFace([a + 1, b + 1, c + 1], element_id)
     return fem_mesh
+
+
+# ----- components ---------------------------------------------------------------------------------
+
+def component_problems(points, triangles, expected=None):
+    """Why FEM and TetGen cannot take this surface's components, in sentences that say where
+    ([] when they can): closed components facing inward (negative signed volume) that are no
+    cavity of another one; given `expected` = (components, inward components) of what the surface
+    was made from (expected_components), more components or more inward ones than that (a
+    hollowed solid's cavity faces inward in both). points (n, 3), triangles (m, 3) 0-based."""
+    points = np.asarray(points, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64)
+    found = native.load().components(points, triangles)
+    closed, volume, cavity = found["closed"], found["signed_volume"], found["cavity"]
+    inward = np.nonzero(closed & (np.nan_to_num(volume) < 0.0))[0]
+    _, first = np.unique(found["label"], return_index=True)  # each component's first triangle
+
+    def where(components):
+        return ", ".join("%s (signed volume %.4g)" % (_point_text(points[triangles[first[c]]].mean(axis=0)), volume[c])
+                         for c in components[:SHOWN])
+
+    problems = []
+    inside_out = [c for c in inward if not cavity[c]]
+    if inside_out:
+        problems.append("%d closed components face inward and are no cavity of another (inside-out pieces, "
+                        "bounding no solid), e.g. at %s" % (len(inside_out), where(inside_out)))
+    if expected is not None:
+        pieces, inward_expected = expected
+        if len(closed) > pieces:
+            problems.append("made of %d components where its source has %d (pieces the source does not have)"
+                            % (len(closed), pieces))
+        if len(inward) > inward_expected and not inside_out:
+            problems.append("%d closed components face inward where its source has %d, e.g. at %s"
+                            % (len(inward), inward_expected, where(list(inward))))
+    return problems
+
+
+def expected_components(mesh_obj):
+    """(components, inward components) of what mesh_obj was made from: the input counts of its
+    remesh report (a remesh feature's Report), else those of the mesh its Source links (source_mesh),
+    else None (nothing to compare with)."""
+    try:
+        counts = json.loads(getattr(mesh_obj, "Report", "") or "{}").get("input", {})
+        return int(counts["components"]), int(counts["inward_components"])
+    except (ValueError, KeyError, TypeError, AttributeError):
+        pass
+    source = source_mesh(mesh_obj)
+    if source is None:
+        return None
+    points, facets = source.Topology
+    found = native.load().components(np.array([tuple(p) for p in points], dtype=np.float64).reshape(-1, 3),
+                                     np.array(facets, dtype=np.int64).reshape(-1, 3))
+    volume = np.nan_to_num(found["signed_volume"])
+    return len(found["closed"]), int(np.count_nonzero(found["closed"] & (volume < 0.0)))
+
+
+def source_mesh(mesh_obj):
+    """The Mesh of the object mesh_obj.Source links when that is a mesh (a remesh feature of an
+    imported STL), or None."""
+    source = getattr(mesh_obj, "Source", None)
+    mesh = getattr(source, "Mesh", None) if source is not None else None
+    return mesh if mesh is not None and mesh.CountFacets else None
+
+
+def _point_text(p):
+    return "(%.3f, %.3f, %.3f)" % tuple(p)
 
 
 # ----- nodes onto the geometry --------------------------------------------------------------------
@@ -293,13 +376,17 @@ def make_fem_shell(doc, mesh_obj, name=None, shape=None):
     when there is one (see the module doc).
     Everything is computed before the document changes, and the change is one transaction
     ("FEM shell mesh"): any failure leaves the document as it was. ValueError for an object without
-    a mesh or with an empty mesh."""
+    a mesh or with an empty mesh; SurfaceRefused (a ValueError) for components facing inward or not
+    in its source (component_problems)."""
     if doc is None:
         raise ValueError("no document")
     mesh = mesh_of(mesh_obj)
     if shape is None:
         shape = source_shape(mesh_obj)
     points, triangles = mesh_arrays(mesh)
+    problems = component_problems([tuple(p) for p in points], triangles, expected_components(mesh_obj))
+    if problems:
+        raise SurfaceRefused("%s cannot be made a shell FEM mesh: it is %s" % (mesh_obj.Label, "; ".join(problems)))
     counts = None
     if shape is not None:
         points, counts = snap_points_to_shape(points, triangles, shape)

@@ -49,8 +49,7 @@ SHOWN = 3  # places named in a refusal
 CREASE_SNAP = 0.25  # largest move onto an edge between two faces, in local edge lengths (onto_shape)
 
 
-class SurfaceRefused(ValueError):
-    """The surface cannot be filled: open, non-manifold or crossing itself. The message says where."""
+SurfaceRefused = fem.SurfaceRefused  # the surface cannot be filled: the message says why and where
 
 
 class SolidMesh:
@@ -88,9 +87,11 @@ class SolidMesh:
 
 # ----- refusal ------------------------------------------------------------------------------------
 
-def surface_problems(points, triangles):
+def surface_problems(points, triangles, expected=None):
     """Why a tetrahedral mesher cannot fill this surface, in sentences that say where (coordinates):
-    edges used by one triangle (a hole) or by more than two, triangles passing through each other.
+    edges used by one triangle (a hole) or by more than two, closed components facing inward that
+    are no cavity of another or, given `expected` (fem.expected_components), components its source
+    does not have (fem.component_problems), triangles passing through each other.
     [] when it can. points (n, 3), triangles (m, 3) 0-based."""
     points = np.asarray(points, dtype=np.float64)
     triangles = np.asarray(triangles, dtype=np.int64)
@@ -103,6 +104,8 @@ def surface_problems(points, triangles):
             places = [_point_text((points[a] + points[b]) / 2) for a, b in bad[:SHOWN]]
             problems.append((what % len(bad)) + ", e.g. at " + ", ".join(places))
     if not problems:
+        problems = fem.component_problems(points, triangles, expected)
+    if not problems:
         pairs = np.asarray(native.load().crossing_triangles(points, triangles)).reshape(-1, 2)
         if len(pairs):
             places = [_point_text(points[triangles[s]].mean(axis=0)) + " / " +
@@ -113,8 +116,7 @@ def surface_problems(points, triangles):
 
 
 
-def _point_text(p):
-    return "(%.3f, %.3f, %.3f)" % tuple(p)
+_point_text = fem._point_text
 
 
 # ----- filling ------------------------------------------------------------------------------------
@@ -122,11 +124,12 @@ def _point_text(p):
 # ----- the whole computation (no document) --------------------------------------------------------
 
 def solid_mesh(mesh, shape=None, order=2, quality=QUALITY, progress=None, label="the mesh", faces=True,
-               surface=None):
+               surface=None, expected=None):
     """A SolidMesh filling the closed Mesh.Mesh `mesh`; nodes put on `shape` when given (module doc).
     Without a shape, the points are put on `surface` when given (a Mesh.Mesh, the STL the mesh was
     remeshed from: its closest points, so that a planar region is exactly planar), and with `faces`
-    the SolidMesh's `faces` is faceted_solid() of the result.
+    the SolidMesh's `faces` is faceted_solid() of the result. `expected`: (components, inward
+    components) of what the mesh was made from (fem.expected_components), or None.
     Touches no document: safe in a worker thread. SurfaceRefused (a ValueError) for a surface that
     cannot be filled, ValueError for bad settings, MesherFailed, liftremesh.Cancelled."""
     if order not in ORDERS:
@@ -135,7 +138,7 @@ def solid_mesh(mesh, shape=None, order=2, quality=QUALITY, progress=None, label=
     vectors, triangle_list = fem.mesh_arrays(mesh)
     triangles = np.array(triangle_list, dtype=np.int64).reshape(-1, 3)
     _report_stage(progress, "check")
-    problems = surface_problems(_array(vectors), triangles)
+    problems = surface_problems(_array(vectors), triangles, expected)
     if problems:
         raise SurfaceRefused("%s cannot be filled with tetrahedra: it is %s" % (label, "; ".join(problems)))
     snapped = None
@@ -286,7 +289,8 @@ def make_fem_solid(doc, mesh_obj, order=2, quality=QUALITY, name=None, shape=Non
     shape_obj = None
     if shape is None:
         shape, shape_obj = fem.source_shape(mesh_obj), shape_object(mesh_obj)
-    result = solid_mesh(mesh, shape, order, quality, progress, mesh_obj.Label, faces, source_mesh(mesh_obj))
+    result = solid_mesh(mesh, shape, order, quality, progress, mesh_obj.Label, faces, source_mesh(mesh_obj),
+                        fem.expected_components(mesh_obj))
     return add_fem_solid(doc, mesh_obj, result, name, analysis, shape_obj)
 
 
@@ -323,12 +327,7 @@ def shape_object(mesh_obj):
     return mesh_obj.Source if fem.source_shape(mesh_obj) is not None else None
 
 
-def source_mesh(mesh_obj):
-    """The Mesh of the object mesh_obj.Source links when that is a mesh (a remesh feature of an
-    imported STL), or None."""
-    source = getattr(mesh_obj, "Source", None)
-    mesh = getattr(source, "Mesh", None) if source is not None else None
-    return mesh if mesh is not None and mesh.CountFacets else None
+source_mesh = fem.source_mesh  # the mesh mesh_obj.Source links (an imported STL), or None
 
 
 def faces_name(mesh_obj):

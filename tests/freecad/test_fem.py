@@ -321,6 +321,38 @@ class FemShellTest(unittest.TestCase):
             LiftRemesh.make_fem_shell(self.doc, self.plate)
         self.assertEqual(document_state(self.doc), before)
 
+    def test_an_inside_out_piece_is_refused_and_the_document_left_as_it_was(self):
+        """A small closed piece facing inward beside the plate (as the remesh of a thin part may
+        make): FEM would take shell elements with normals and mass from a piece standing for
+        nothing. Refused, saying which and where, nothing added."""
+        import Mesh
+
+        surface = Mesh.Mesh(self.mesh)
+        bubble = Mesh.createBox(2.0, 2.0, 2.0)
+        bubble.flipNormals()
+        bubble.translate(120.0, 10.0, 0.0)
+        surface.addMesh(bubble)
+        self.remeshed.Mesh = surface
+        self.doc.recompute()
+        before = document_state(self.doc)
+        with self.assertRaisesRegex(fem.SurfaceRefused, r"Remesh cannot be made a shell FEM mesh: it is 1 closed "
+                                                        r"components face inward .* at \((119|120|121)\.\d+, (9|10|11)\.\d+, "
+                                                        r"-?[01]\.\d+\) \(signed volume -8\)"):
+            fem.make_fem_shell(self.doc, self.remeshed)
+        self.assertEqual(document_state(self.doc), before)
+        # facing outward, it is a piece the remesh report's input does not have
+        bubble.flipNormals()
+        surface = Mesh.Mesh(self.mesh)
+        surface.addMesh(bubble)
+        self.remeshed.Mesh = surface
+        self.remeshed.addProperty("App::PropertyString", "Report", "Base", "a remesh report")
+        self.remeshed.Report = '{"input": {"components": 1, "inward_components": 0}}'
+        self.doc.recompute()
+        before = document_state(self.doc)
+        with self.assertRaisesRegex(fem.SurfaceRefused, "made of 2 components where its source has 1"):
+            fem.make_fem_shell(self.doc, self.remeshed)
+        self.assertEqual(document_state(self.doc), before)
+
     def test_failure_inside_the_transaction_leaves_the_document_unchanged(self):
         # undo off (FreeCADCmd's default: aborting the transaction alone keeps the new object) and
         # on (the GUI's: aborting removes it)

@@ -29,7 +29,7 @@ from femtools import ccxtools
 
 import fem_compat
 import LiftRemesh
-from LiftRemesh import fem_solid, native, tet_mesh, tetgen
+from LiftRemesh import fem, fem_solid, native, tet_mesh, tetgen
 
 sys.path.insert(0, os.path.join(native.ADDON_ROOT, "scripts"))
 from demo_bracket import make_bracket  # noqa: E402
@@ -438,6 +438,62 @@ class FillingTest(unittest.TestCase):
         self.assertEqual(document_state(self.doc), before)
         # where the two spheres meet: the circle x = (25 - 16 + 36) / 12 = 3.75
         self.assertEqual(fem_solid.surface_problems(*map(np.array, Mesh.createSphere(5.0, 30).Topology)), [])
+
+    def test_an_inside_out_piece_is_refused_and_the_document_left_as_it_was(self):
+        """The frame's case: the part beside a small closed piece facing inward, which bounds no
+        solid (TetGen would fill around it or fail). Refused, saying where, before TetGen runs."""
+        surface = Mesh.Mesh(self.box_mesh)
+        bubble = Mesh.createBox(1.0, 1.0, 1.0)
+        bubble.flipNormals()
+        bubble.translate(30.0, 5.0, 3.0)
+        surface.addMesh(bubble)
+        obj = mesh_feature(self.doc, surface, self.box, name="InsideOut")
+        before = document_state(self.doc)
+        with mock.patch.object(tetgen, "tetrahedralize") as mesher:
+            with self.assertRaisesRegex(fem_solid.SurfaceRefused,
+                                        r"InsideOut cannot be filled .* 1 closed components face inward and are no "
+                                        r"cavity of another .* e\.g\. at \((29|30)\.\d+, [45]\.\d+, [23]\.\d+\) "
+                                        r"\(signed volume -1\)"):
+                LiftRemesh.make_fem_solid(self.doc, obj)
+            mesher.assert_not_called()
+        self.assertEqual(document_state(self.doc), before)
+
+    def test_pieces_the_source_does_not_have_are_refused(self):
+        """A second closed piece, facing outward, where the remesh report's input (or the source
+        mesh) has one: refused. The remesh report's counts come first, then the source mesh's."""
+        surface = Mesh.Mesh(self.box_mesh)
+        extra = Mesh.createBox(1.0, 1.0, 1.0)
+        extra.translate(30.0, 5.0, 3.0)
+        surface.addMesh(extra)
+        source = mesh_feature(self.doc, self.box_mesh, name="SourceMesh")
+        obj = mesh_feature(self.doc, surface, source, name="TwoPieces")
+        before = document_state(self.doc)
+        with mock.patch.object(tetgen, "tetrahedralize") as mesher:
+            with self.assertRaisesRegex(fem_solid.SurfaceRefused, "made of 2 components where its source has 1"):
+                LiftRemesh.make_fem_solid(self.doc, obj)
+            obj.addProperty("App::PropertyString", "Report", "Base", "a remesh report")
+            obj.Report = '{"input": {"components": 2, "inward_components": 0}}'
+            self.assertEqual(fem.expected_components(obj), (2, 0))
+            before = document_state(self.doc)
+            mesher.side_effect = tetgen.MesherFailed("not run")  # the check passes: TetGen is reached
+            with self.assertRaisesRegex(tetgen.MesherFailed, "not run"):
+                LiftRemesh.make_fem_solid(self.doc, obj)
+        self.assertEqual(document_state(self.doc), before)
+
+    def test_a_hollowed_solids_cavity_is_no_problem(self):
+        """A cavity faces inward as a hollowed solid's inner wall does: accepted, alone and beside its
+        source's counts; the same two walls where the source has one component are refused."""
+        outer = Mesh.createBox(10.0, 10.0, 10.0)
+        inner = Mesh.createBox(4.0, 4.0, 4.0)  # both centred at the origin
+        inner.flipNormals()
+        hollow = Mesh.Mesh(outer)
+        hollow.addMesh(inner)
+        points, facets = hollow.Topology
+        points = np.array([tuple(p) for p in points])
+        self.assertEqual(fem.component_problems(points, facets), [])
+        self.assertEqual(fem.component_problems(points, facets, (2, 1)), [])
+        self.assertEqual(fem_solid.surface_problems(points, facets, (2, 1)), [])
+        self.assertEqual(len(fem.component_problems(points, facets, (1, 0))), 2)  # a piece more, inward more
 
     def test_one_undo_step_into_the_given_analysis(self):
         self.doc.UndoMode = 1

@@ -42,6 +42,7 @@ class SolidJob(job.RemeshJob):
         super().__init__([fem.mesh_of(obj) for obj in objects], params)
         self.shapes = [fem.source_shape(obj) for obj in objects]
         self.surfaces = [fem_solid.source_mesh(obj) for obj in objects]
+        self.expected = [fem.expected_components(obj) for obj in objects]
         self.labels = [obj.Label for obj in objects]
 
     def fraction(self):
@@ -66,6 +67,7 @@ class SolidJob(job.RemeshJob):
                 self.progress = job.Progress(index, "check")
                 results.append(fem_solid.solid_mesh(mesh, self.shapes[index], progress=self._report,
                                                     label=self.labels[index], surface=self.surfaces[index],
+                                                    expected=self.expected[index],
                                                     **self.params))
         except BaseException as error:  # handed to the main thread, which reports it
             self.error = error
