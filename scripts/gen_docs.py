@@ -43,8 +43,8 @@ QUALITY = {
                          "vertices a manifold copy has, and so how much higher its Euler characteristic is",
     "oriented": "every manifold edge is used once in each direction: neighbours agree, which says "
                 "nothing of whether a closed component faces outward (`inward_components` does)",
-    "components": "connected components (triangles sharing a vertex, as the pieces remeshed on their "
-                  "own are split)",
+    "components": "connected components: triangles joined through edges used by exactly two triangles "
+                  "(two solids touching at a point are two)",
     "closed_components": "components with no edge used by one triangle only",
     "inward_components": "closed components facing inward: negative signed volume. Legitimate only as "
                          "the cavity of a hollowed solid",
@@ -110,7 +110,7 @@ FIELDS = {
 }
 
 WARNINGS = [
-    "the output has more components than the input (plus the fans of its non-manifold vertices split)",
+    "the output has more components than the input",
     "the output has more closed components facing inward than the input (its cavities)",
     "small stray pieces were removed (`stray_components_removed`)",
     "the output's Euler characteristic is not `expected_euler_characteristic`: parts thinner than "

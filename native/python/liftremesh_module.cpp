@@ -396,7 +396,8 @@ points: (n, 3) float64 array; triangles: (m, 3) integer array of vertex indices.
 Returns a (k, 2) int32 array of triangle indices (s, t), s < t, sorted; empty when none cross.
 Raises InvalidInput (a ValueError) for bad arrays. The GIL is released while it runs.)doc");
     m.def("components", &components, py::arg("points"), py::arg("triangles"),
-          R"doc(The connected components of a triangle surface (triangles sharing a vertex), measured as a
+          R"doc(The connected components of a triangle surface (triangles joined through edges used by
+exactly two triangles), measured as a
 solid's boundary: the report's "components" of input and output.
 
 points: (n, 3) float64 array; triangles: (m, 3) integer array of vertex indices.

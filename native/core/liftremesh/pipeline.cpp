@@ -439,18 +439,17 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     // Closed pieces that stand for no part of the input (stray_components.h): bubbles the
     // triangulation closed where a member is thinner than the cells. Counted against the whole
     // input, once every piece is in; before the untangling, which then sees what is handed on.
-    clock.begin("repair");
-    const StrayComponentStats strays =
-        remove_stray_components(out, stray_component_params(mesh_components(input), report.input.extra_vertex_fans));
-    report.stray_components_removed = strays.removed;
-    report.stray_inward_removed = strays.inward_removed;
-    clock.end();
-
     // The whole input's tree: the only piece's, or built once the pieces' trees are freed.
     const AabbTree input_tree = pieces.size() == 1 ? std::move(*pieces[0].tree) : AabbTree(input);
     pieces.clear();
 
     clock.begin("untangle");
+    // Closed pieces that stand for no part of the input (stray_components.h): bubbles the
+    // triangulation closed where a member is thinner than the cells. Counted against the whole
+    // input, once every piece is in; before the untangling, which then sees what is handed on.
+    const StrayComponentStats strays = remove_stray_components(out, stray_component_params(mesh_components(input)));
+    report.stray_components_removed = strays.removed;
+    report.stray_inward_removed = strays.inward_removed;
     // Triangles passing through each other, untangled by flips (untangle.h), across pieces too.
     // The tree and the crossings left serve the report.
     UntangleStats untangled =

@@ -66,12 +66,8 @@ long vertex_fans_split(const RemeshReport& report);
 //! one per crack closed and one per vertex fan split (each is the repair asked for).
 int expected_euler_characteristic(const RemeshReport& report);
 
-//! Components the result may have: the input's, plus a piece per extra fan of its non-manifold
-//! vertices that the result splits (vertex_fans_split).
-long expected_components(const RemeshReport& report);
-
-//! The warnings of a finished report: components the input does not have (more than
-//! expected_components), closed components facing inward beyond the input's (its cavities),
+//! The warnings of a finished report: components the input does not have (more than its
+//! components), closed components facing inward beyond the input's (its cavities),
 //! stray pieces removed (stray_components_removed), another topology than the input's (parts thinner than
 //! the target edge length merge or break: "Problems may happen if the number of samples is
 //! insufficient, in regions where S is thin", Section 2.2), more boundary loops than the input

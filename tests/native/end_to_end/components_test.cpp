@@ -65,7 +65,7 @@ TEST(Components, AStrayInsideOutPieceIsRemovedCountedAndWarned) {
     EXPECT_TRUE(mentions(kept_warnings, "2 closed components facing inward"));
 
     const StrayComponentStats removed = remove_stray_components(
-        with_strays, stray_component_params(mesh_components(input), r.report.input.extra_vertex_fans));
+        with_strays, stray_component_params(mesh_components(input)));
     EXPECT_EQ(removed.removed, 2);
     EXPECT_EQ(removed.inward_removed, 2);
     Mesh expected = r.mesh; // its vertices in order of first use, as the step leaves them

@@ -1,6 +1,7 @@
 // components.h: connected components, closedness, signed volumes, cavities, winding numbers.
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/components.h"
+#include "liftremesh/mesh/mesh_io.h"
 #include "helpers.h"
 
 #include <gtest/gtest.h>
@@ -87,11 +88,28 @@ TEST(Components, VolumeDoesNotDependOnWhereTheSolidIs) {
     EXPECT_NEAR(mesh_components(sphere).components[0].signed_volume, at_origin, 1e-9 * at_origin);
 }
 
-// Spheres touching at a vertex are one component (as solid_parts.h has them).
-TEST(Components, TouchingAtAVertexIsOneComponent) {
-    const MeshComponents split = mesh_components(test::make_touching_spheres(1));
-    ASSERT_EQ(split.components.size(), 1u);
-    EXPECT_TRUE(split.components[0].closed);
+// Spheres touching at a vertex are two closed surfaces, each with its own volume and
+// orientation (solid_parts.h remeshes them together): the helper's second sphere is the first
+// reflected through a point, which turns it inside-out. Cubes sharing an edge (used by four
+// triangles) are two components, each closed.
+TEST(Components, ComponentsAreJoinedThroughEdgesNotVertices) {
+    const MeshComponents spheres = mesh_components(test::make_touching_spheres(1));
+    ASSERT_EQ(spheres.components.size(), 2u);
+    EXPECT_TRUE(spheres.components[0].closed);
+    EXPECT_TRUE(spheres.components[1].closed);
+    EXPECT_NEAR(spheres.components[1].signed_volume, -spheres.components[0].signed_volume, 1e-12);
+    EXPECT_GT(spheres.components[0].signed_volume, 0.0);
+    EXPECT_EQ(spheres.inward(), 1);
+    EXPECT_EQ(spheres.cavities(), 0);
+
+    Mesh pair = test::joined(test::make_box({0, 0, 0}, {1, 1, 1}, 1), test::make_box({1, 1, 0}, {2, 2, 1}, 1));
+    weld_exact(pair); // the edge x = y = 1 now used by four triangles
+    const MeshComponents cubes = mesh_components(pair);
+    ASSERT_EQ(cubes.components.size(), 2u);
+    EXPECT_TRUE(cubes.components[0].closed);
+    EXPECT_TRUE(cubes.components[1].closed);
+    EXPECT_NEAR(cubes.components[0].signed_volume, 1.0, 1e-12);
+    EXPECT_NEAR(cubes.components[1].signed_volume, 1.0, 1e-12);
 }
 
 TEST(Components, WindingNumberIsOneInsideZeroOutsideMinusOneInsideOut) {

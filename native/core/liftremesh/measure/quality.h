@@ -31,7 +31,7 @@ struct MeshQuality {
     //! Every manifold edge is used once in each direction: neighbours agree, which says nothing
     //! of whether a closed component faces outward (inward_components does).
     bool oriented = true;
-    //! Connected components (triangles sharing a vertex: components.h), the closed ones among
+    //! Connected components (joined through edges: components.h), the closed ones among
     //! them, the closed ones facing inward (negative signed volume), and of those the cavities
     //! (inside another closed component, as a hollowed solid's inner wall).
     long components = 0;

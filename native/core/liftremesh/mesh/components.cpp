@@ -33,37 +33,44 @@ double winding_number(const Mesh& mesh, const std::vector<int32_t>& ids, const E
 MeshComponents mesh_components(const Mesh& mesh) {
     check_indices(mesh, "mesh_components");
     const Eigen::Index nf = mesh.triangles.rows();
-    std::vector<std::pair<int, int>> links; // each triangle's corners to its first
-    links.reserve(2 * static_cast<size_t>(nf));
-    for (Eigen::Index f = 0; f < nf; ++f)
-        for (int j = 1; j < 3; ++j) links.emplace_back(mesh.triangles(f, 0), mesh.triangles(f, j));
-    std::vector<int> vertex_label;
-    connected_components(static_cast<int>(mesh.points.rows()), links, vertex_label);
+    const EdgeUses edges = edge_uses(mesh.triangles);
+    std::vector<std::pair<int, int>> links; // the two triangles of each edge used by exactly two
+    for (long e = 0; e < edges.size(); ++e)
+        if (edges.count(e) == 2) links.emplace_back(edges.uses.begin(e)[0] / 3, edges.uses.begin(e)[1] / 3);
 
-    // Components numbered in order of first triangle (the vertices' numbering counts vertices no
-    // triangle uses).
+    // connected_components numbers them in order of first triangle.
     MeshComponents result;
-    result.label.resize(static_cast<size_t>(nf));
-    std::vector<int> number(mesh.points.rows() > 0 ? static_cast<size_t>(mesh.points.rows()) : 0, -1);
-    std::vector<Eigen::Vector3d> origin;
+    const int count = connected_components(static_cast<int>(nf), links, result.label);
+    result.components.resize(static_cast<size_t>(count));
+    std::vector<Eigen::Vector3d> origin(static_cast<size_t>(count));
+    std::vector<char> seen(static_cast<size_t>(count), 0);
     for (Eigen::Index f = 0; f < nf; ++f) {
-        int& c = number[vertex_label[mesh.triangles(f, 0)]];
-        if (c < 0) {
-            c = static_cast<int>(result.components.size());
-            result.components.emplace_back();
-            result.components.back().closed = true;
-            origin.push_back(corner(mesh, f, 0));
-        }
-        result.label[f] = c;
+        const int c = result.label[f];
         MeshComponent& part = result.components[c];
+        if (!seen[c]) {
+            seen[c] = 1;
+            part.closed = true;
+            origin[c] = corner(mesh, f, 0);
+        }
         const Eigen::Vector3d a = corner(mesh, f, 0) - origin[c], b = corner(mesh, f, 1) - origin[c],
                               d = corner(mesh, f, 2) - origin[c];
         ++part.triangles;
         part.area += 0.5 * (b - a).cross(d - a).norm();
         part.signed_volume += a.dot(b.cross(d)) / 6.0;
     }
-    for (const EdgeCount& e : edge_counts(mesh.triangles))
-        if (e.count < 2) result.components[number[vertex_label[e.a]]].closed = false;
+    // Open: an edge used by exactly one of its triangles (a boundary edge, or one of several
+    // components meeting at a non-manifold edge with a single triangle).
+    std::vector<int> uses_in;
+    for (long e = 0; e < edges.size(); ++e) {
+        if (edges.count(e) == 2) continue; // both in one component
+        uses_in.clear();
+        for (const int32_t* u = edges.uses.begin(e); u != edges.uses.end(e); ++u) uses_in.push_back(result.label[*u / 3]);
+        std::sort(uses_in.begin(), uses_in.end());
+        for (size_t i = 0; i < uses_in.size(); ++i) {
+            const bool alone = (i == 0 || uses_in[i - 1] != uses_in[i]) && (i + 1 == uses_in.size() || uses_in[i + 1] != uses_in[i]);
+            if (alone) result.components[uses_in[i]].closed = false;
+        }
+    }
     for (MeshComponent& c : result.components)
         if (!c.closed) c.signed_volume = 0.0;
 

@@ -2,9 +2,10 @@
 // not, area, and for a closed one the signed volume it encloses (divergence theorem) and whether
 // it is a cavity of another. A closed surface facing inward (negative volume) bounds no solid
 // unless it lies inside another closed surface, as a hollowed part's inner wall does; TetGen and
-// FEM refuse any other. Shared by the stray-component step (repair/stray_components.h), the
-// quality report (measure/quality.h) and solid_parts.h; Gmsh calls them volumes' surface loops,
-// FreeCAD's Mesh workbench "components" (Evaluate and repair).
+// FEM refuse any other. Shared by the stray-component step (repair/stray_components.h) and the
+// quality report (measure/quality.h). Components are joined through edges, not vertices (unlike
+// solid_parts.h, which remeshes solids touching at a point together): two solids touching at a
+// vertex are two closed surfaces, each with its own volume and orientation.
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"
@@ -16,7 +17,7 @@ namespace liftremesh {
 struct MeshComponent {
     long triangles = 0;
     double area = 0.0;
-    //! No edge of it is used by one triangle only (as solid_parts.h counts it).
+    //! No edge is used by exactly one of its triangles.
     bool closed = false;
     //! Closed ones: the volume enclosed, positive when the triangles face outward (counter-
     //! clockwise seen from outside), by the divergence theorem, V = 1/6 sum (a - o).((b - o) x
@@ -41,8 +42,9 @@ struct MeshComponents {
     long cavities() const;                 //!< how many of those are cavities
 };
 
-//! The components of `mesh`: triangles sharing a vertex are in one (as solid_parts.h splits a
-//! mesh). Throws InvalidInput if a triangle index is out of range.
+//! The components of `mesh`: two triangles are in one when a chain of edges, each used by
+//! exactly two triangles, joins them (a non-manifold edge joins nothing, as in orientation.h).
+//! Throws InvalidInput if a triangle index is out of range.
 MeshComponents mesh_components(const Mesh& mesh);
 
 //! Winding number at `p` of the triangles `ids` of `mesh`: the sum of their solid angles seen from

@@ -6,9 +6,9 @@
 
 namespace liftremesh {
 
-StrayComponentParams stray_component_params(const MeshComponents& input, long extra_fans) {
+StrayComponentParams stray_component_params(const MeshComponents& input) {
     StrayComponentParams params;
-    params.pieces = static_cast<long>(input.components.size()) + extra_fans;
+    params.pieces = static_cast<long>(input.components.size());
     params.inward = input.inward();
     double smallest = std::numeric_limits<double>::infinity();
     for (const MeshComponent& c : input.components) smallest = std::min(smallest, c.area);

@@ -4,8 +4,8 @@
 // ... in regions where S is thin"); the manifold repair sees a valid closed manifold and keeps
 // it. Such a bubble bounds no solid: TetGen and FEM refuse the surface, and a volume or mass
 // property taken from it is wrong. The input says how many pieces there should be: each of its
-// components is one piece of the output (a non-manifold vertex's fans may come apart, one piece
-// each), and its inward ones are the cavities of a hollowed solid. The output's pieces beyond
+// components (components.h) is one piece of the output, and its inward ones are the cavities of
+// a hollowed solid. The output's pieces beyond
 // those counts, smallest first, are strays when small; larger ones stay, and the report warns.
 #pragma once
 
@@ -20,17 +20,14 @@ namespace liftremesh {
 constexpr double kStrayShare = 0.01;
 
 struct StrayComponentParams {
-    //! Pieces the output may have: the input's components plus the extra fans of its non-manifold
-    //! vertices (each may come out as a piece of its own).
-    long pieces = 0;
+    long pieces = 0;       //!< pieces the output may have: the input's components
     long inward = 0;       //!< closed pieces facing inward the output may have: the input's
     double max_area = 0.0; //!< a piece larger than this stays (input units); 0 removes nothing
 };
 
-//! The counts of `input` (the cleaned input, its components measured once) as the limits of
-//! remove_stray_components: kStrayShare of its smallest component's area, `extra_fans` its
-//! non-manifold vertices' fans beyond the first (MeshQuality::extra_vertex_fans).
-StrayComponentParams stray_component_params(const MeshComponents& input, long extra_fans);
+//! The counts of `input` (the cleaned input's components) as the limits of
+//! remove_stray_components, and kStrayShare of its smallest component's area.
+StrayComponentParams stray_component_params(const MeshComponents& input);
 
 struct StrayComponentStats {
     long removed = 0;        //!< pieces removed
