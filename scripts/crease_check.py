@@ -25,16 +25,13 @@ import Mesh  # noqa: E402
 
 import cad_parts  # noqa: E402
 import crease_check  # noqa: E402
+import mesh_checks  # noqa: E402
 
 SHARED = ("gmsh_t13_data.stl", "netgen_hinge.stl", "gmsh_lever.stl", "pmp_fandisk.off", "gmsh_object.stl")
 
 
 def read(path):
-    points, facets = Mesh.Mesh(path).Topology
-    import numpy as np
-
-    return (np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3),
-            np.array(facets, dtype=np.int64).reshape(-1, 3))
+    return mesh_checks.arrays(Mesh.Mesh(path))
 
 
 def write(points, triangles, path):

@@ -5,8 +5,8 @@
     features = LiftRemesh.remesh_objects(doc, [doc.Box], edge_length=2.0)
 
 Parameters (all optional, by keyword): vertices or edge_length, mode ("isotropic" or
-"anisotropic"), sigma, delta, nu, eta, iterations, seed, threads, fill_holes, and for Part shapes
-linear_deflection (mm) and angular_deflection (degrees) of the tessellation. `defaults(mode)`
+"anisotropic"), sigma, feature_angle, delta, nu, eta, iterations, seed, threads, fill_holes, and for
+Part shapes linear_deflection (mm) and angular_deflection (degrees) of the tessellation. `defaults(mode)`
 lists them with their values; the command-line tool has the same names and defaults.
 Errors: ValueError for bad input (liftremesh.InvalidInput is one), LiftRemesh.Cancelled when a
 progress callback returns False, LiftRemesh.Error as the base of the remesher's errors.

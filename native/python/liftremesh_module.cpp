@@ -380,7 +380,7 @@ triangles: (m, 3) integer array of vertex indices (a soup is fine: exactly equal
 Every parameter of parameters() by keyword (None = the default of the mode, see defaults(mode)):
 vertices / edge_length: target size (one of them; default: defaults()['vertices']).
 mode: "isotropic" (with local density) or "anisotropic"; sets the defaults of nu and delta.
-sigma, delta, nu, eta, iterations, seed, threads, fill_holes: see parameters().
+sigma, feature_angle, delta, nu, eta, iterations, seed, threads, fill_holes: see parameters().
 progress: None or a callable (stage, iteration, total, energy); returning False cancels, which
 raises liftremesh.Cancelled.
 
@@ -421,7 +421,7 @@ released while it runs.)doc");
           "'choice', 'flag'), min and max (None: unbounded), min_open and max_open (the end excluded), "
           "replaces (the parameter a set value replaces, 0 meaning unset; or None), choices, defaults "
           "({'isotropic': v, 'anisotropic': v}), decimals and step (for spin boxes), unit ('length', "
-          "'unit-ball' or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
+          "'unit-ball', 'angle' (degrees) or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
           "default (as text), help, label (the name a GUI shows) and gui_help (what it does to the mesh, in "
           "a CAD user's words, lengths in mm).");
 }

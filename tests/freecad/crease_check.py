@@ -19,8 +19,11 @@ Figures (`measure`), h the target edge length:
 Arrays: points (n, 3) float64, triangles (m, 3) int. numpy only; FreeCAD for the B-rep functions.
 """
 import math
+import typing
 
 import numpy as np
+
+import mesh_checks
 
 CREASE_DEG = 30.0
 CORNER_CREASES = 3
@@ -149,9 +152,25 @@ def brep_creases(shape, h, crease_deg=CREASE_DEG):
                 return i
         return None
 
-    def face_normal(face, point):
-        u, v = face.Surface.parameter(point)
-        n = face.normalAt(u, v)  # the face's orientation included: outward on a solid
+    def uv_of(face, edge):
+        """The (u, v) on `face` of a point of `edge` at the edge's parameter t: its curve on the
+        face (the pcurve, sharing the edge's parameter; curveOnSurface gives (curve2d, ..., first,
+        last) in 0.20 and 1.0), else the surface's projection (Surface.parameter, slower)."""
+        try:
+            curve2d = face.curveOnSurface(edge)[0]
+        except Exception:  # no pcurve stored for it
+            curve2d = None
+
+        def uv(t, point):
+            if curve2d is not None:
+                q = curve2d.value(t)
+                if face.Surface.value(q.x, q.y).distanceToPoint(point) <= 1e-3 * h:
+                    return q.x, q.y
+            return face.Surface.parameter(point)
+        return uv
+
+    def normal(face, uv):
+        n = face.normalAt(*uv)  # the face's orientation included: outward on a solid
         return np.array([n.x, n.y, n.z])
 
     for edge in shape.Edges:
@@ -161,10 +180,12 @@ def brep_creases(shape, h, crease_deg=CREASE_DEG):
         if len(faces) != 2 or faces[0].isSame(faces[1]):  # a boundary or a seam
             continue
         n = max(2, int(math.ceil(edge.Length / (SAMPLE_H * h))) + 1)
-        points = edge.discretize(Number=n)
+        ts = [edge.getParameterByLength(s) for s in np.linspace(0.0, edge.Length, n)]
+        points = [edge.valueAt(t) for t in ts]
+        uv0, uv1 = uv_of(faces[0], edge), uv_of(faces[1], edge)
         turn = []
-        for p in points:
-            a, b = face_normal(faces[0], p), face_normal(faces[1], p)
+        for t, p in zip(ts, points):
+            a, b = normal(faces[0], uv0(t, p)), normal(faces[1], uv1(t, p))
             turn.append(math.degrees(math.acos(max(-1.0, min(1.0, float(a.dot(b)))))))
         turn = np.array(turn)
         xyz = np.array([(p.x, p.y, p.z) for p in points])
@@ -182,16 +203,13 @@ def brep_creases(shape, h, crease_deg=CREASE_DEG):
                    np.concatenate(angles) if angles else np.zeros(0), corners, length, "B-rep")
 
 
-class Figures:
-    """What `measure` gives: recall, the missed samples' angles, corner distances (in h), spurious
-    ratio, and the crease-sample count."""
-
-    def __init__(self, recall, missed_angles, corner_h, spurious, samples):
-        self.recall = recall
-        self.missed_angles = missed_angles
-        self.corner_h = corner_h
-        self.spurious = spurious
-        self.samples = samples
+class Figures(typing.NamedTuple):
+    """What `measure` gives."""
+    recall: float
+    missed_angles: np.ndarray  # the angles of the crease samples missed, in degrees
+    corner_h: np.ndarray  # each corner's distance to the nearest output vertex, in h
+    spurious: float
+    samples: int  # crease samples
 
     @property
     def worst_corner_h(self):
@@ -235,8 +253,6 @@ def tessellate(shape, linear_deflection=0.1, angular_deflection_deg=30.0):
     Import-Export > Mesh formats: 0.1 mm and 30 degrees, the add-on's tessellation defaults)."""
     import MeshPart
 
-    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=linear_deflection,
-                                  AngularDeflection=math.radians(angular_deflection_deg), Relative=False)
-    points, facets = mesh.Topology
-    return (np.array([(p.x, p.y, p.z) for p in points], dtype=np.float64).reshape(-1, 3),
-            np.array(facets, dtype=np.int64).reshape(-1, 3))
+    return mesh_checks.arrays(MeshPart.meshFromShape(Shape=shape, LinearDeflection=linear_deflection,
+                                                     AngularDeflection=math.radians(angular_deflection_deg),
+                                                     Relative=False))

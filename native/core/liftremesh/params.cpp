@@ -161,6 +161,16 @@ const std::vector<ParameterInfo>& parameter_table() {
             .words("Sensitivity",
                    "How strongly vertices are pulled onto sharp edges and corners, 1 to 100: higher keeps edges and "
                    "corners sharper, 1 leaves them rounded."),
+        Row("feature_angle", K::Real, &P::feature_angle)
+            .range(0, 180, true)
+            .spin(1, 5)
+            .unit("angle")
+            .text("DEG", "", "input edges turning by more than this many degrees are creases the output follows "
+                             "(180 = none)")
+            .words("Feature angle",
+                   "Edges of the part where its faces meet at an angle sharper than this, in degrees, keep a row of "
+                   "triangle edges along them and a vertex on every corner where they meet, above 0 to 180: 30 "
+                   "keeps the edges of chamfers and steps, 180 leaves sharp edges to Sensitivity alone."),
         Row("delta", K::Real, &P::delta)
             .range(0, 2)
             .anisotropic(0.0) // Section 6.1

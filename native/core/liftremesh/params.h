@@ -39,6 +39,11 @@ struct RemeshParams {
     //! sigma: feature sensitivity, weight of the normal component of the distance (Eq. 9, 14).
     //! Range >= 1 (1 = no feature sensitivity). Default 5 (Section 6.1).
     double sigma = 5.0;
+    //! Feature angle in degrees: the input's edges whose two faces turn by more than this are
+    //! creases, and the output gets vertices on their corners and edges along them after the
+    //! optimisation (crease_snap.h). Range (0, 180]; 180 turns the explicit creases off (the sigma
+    //! term still pulls vertices onto sharp edges, as in the paper). Default 30.
+    double feature_angle = 30.0;
     //! delta: exponent of the local density rho_p^delta (Eq. 21, 25). Range [0, 2].
     //! Default 0.4 isotropic, 0 anisotropic (Section 6.1).
     double delta = 0.4;
@@ -106,7 +111,7 @@ struct ParameterInfo {
     double anisotropic_default = 0.0;
     int decimals = 0;    //!< Real: digits a spin box shows; an editor keeps 10^-decimals off an open end
     double step = 1.0;   //!< increment of a spin box
-    std::string unit;    //!< "length" (input units), "unit-ball" (units of the unit ball), or ""
+    std::string unit;    //!< "length" (input units), "unit-ball" (units of the unit ball), "angle" (degrees), or ""
     std::string metavar; //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
     std::string symbol;  //!< the paper's symbol, or "" if none
     std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")

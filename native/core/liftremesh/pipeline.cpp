@@ -255,9 +255,12 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     // after the snap, so that an open input's boundary, where the output now lies, is no witness.
     report.vertices_inserted +=
         snapped.corners_inserted + refine_towards_input(out, reference, steps.hausdorff_refinement).inserted;
-    // Knife edges, which the feature term leaves cut (crease_snap.h): after the refinement, which
-    // inserts the points of their corners and of a few places.
-    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, steps.crease_snap);
+    // Knife edges, which the feature term leaves cut, and every crease over the feature angle
+    // (crease_snap.h): after the refinement, which inserts the points of their corners and of a
+    // few places. At feature_angle 180 only the knife edges, which are a repair (Section 6.2.2).
+    CreaseSnapParams onto_creases = params.feature_angle < 180.0 ? steps.feature_snap : steps.crease_snap;
+    onto_creases.min_turn_deg = std::min(onto_creases.min_turn_deg, params.feature_angle);
+    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, onto_creases);
     clock.end();
 
     // The worst triangles raised by flips and vertex moves that keep the surface on the input;

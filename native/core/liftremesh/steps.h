@@ -33,6 +33,9 @@ struct StepSettings {
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;
     CreaseSnapParams crease_snap;
+    //! The crease snap onto every crease over the feature angle (its min_turn_deg set from
+    //! RemeshParams::feature_angle): a vertex moves wherever the crease is cut at all.
+    CreaseSnapParams feature_snap;
     QualityPolishParams quality_polish;
     FoldedPairParams folded_pairs;
     UntangleParams untangle;

@@ -119,3 +119,34 @@ TEST(CreaseSnap, RejectsBadParameters) {
     p.min_turn_deg = 200.0;
     EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
 }
+
+// The feature angle's creases (steps.h, feature_snap): a 32-degree crease (faces at 148 degrees)
+// whose row of vertices lies 0.04 h off it, less deep than the tolerance of 0.05 h, is left alone
+// by the knife edges' repair (not acute, and within the tolerance) and put on the crease with a
+// smaller turn and depth, its triangles kept as good as the floor.
+TEST(CreaseSnap, PutsAShallowCreaseCutLessThanTheToleranceOnTheRow) {
+    const double h = 0.1, offset = 0.04 * h;
+    const Mesh input = wedge(148.0, 1.0, 1.0);
+    const int row = 11;
+    {
+        Mesh mesh = wedge(148.0, 1.0, 1.0, h, offset);
+        CreaseSnapParams params = params_for(h);
+        params.min_turn_deg = 30.0; // the crease found, but cut less deep than the tolerance
+        const CreaseSnapStats stats = snap_to_acute_creases(mesh, test::OwnedReference(input), params);
+        EXPECT_EQ(stats.creases, 1);
+        EXPECT_EQ(stats.moved, 0);
+    }
+    Mesh mesh = wedge(148.0, 1.0, 1.0, h, offset);
+    const test::Topology before = test::topology(mesh);
+    CreaseSnapParams params = params_for(h);
+    params.min_turn_deg = 30.0;
+    params.min_depth = 0.02 * h;
+    const CreaseSnapStats stats = snap_to_acute_creases(mesh, test::OwnedReference(input), params);
+    EXPECT_EQ(stats.creases, 1);
+    EXPECT_EQ(stats.moved, row);
+    for (int j = 0; j < row; ++j) EXPECT_NEAR(mesh.points.row(j).head<2>().norm(), 0.0, 1e-12) << "vertex " << j;
+    const test::Topology after = test::topology(mesh);
+    EXPECT_TRUE(after.oriented_manifold());
+    EXPECT_EQ(after.chi, before.chi);
+    EXPECT_GE(test::min_kappa(mesh), 0.45);
+}

@@ -7,10 +7,11 @@
 
 namespace liftremesh {
 
-AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing) {
+AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing,
+                           double min_length) {
     const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
     const EdgeUses edges = edge_uses(input.triangles);
-    std::vector<Eigen::Vector3d> samples;
+    std::vector<std::pair<int32_t, int32_t>> found;
     for (long e = 0; e < edges.size(); ++e) {
         // Two triangles using the edge in opposite directions: a consistently oriented pair.
         if (edges.count(e) != 2) continue;
@@ -18,7 +19,26 @@ AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double
         if (runs_forward(input.triangles, s) == runs_forward(input.triangles, t)) continue;
         const Eigen::Vector3d n1 = input_tree.triangle_normal(s / 3), n2 = input_tree.triangle_normal(t / 3);
         if (!(n1.squaredNorm() > 0.0 && n2.squaredNorm() > 0.0) || !(n1.dot(n2) < cos_turn)) continue;
-        const int32_t a = edges.a[e], b = edges.b[e];
+        found.emplace_back(edges.a[e], edges.b[e]);
+    }
+    // The creases as chains of edges joined at their vertices, each chain's length in all: a chain
+    // shorter than min_length is a scan's noise or a facet's slip, not a feature of the part.
+    std::unordered_map<int32_t, int32_t> parent;
+    auto root = [&parent](int32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& [a, b] : found) {
+        parent.emplace(a, a);
+        parent.emplace(b, b);
+        parent[root(a)] = root(b);
+    }
+    auto length = [&input](int32_t a, int32_t b) { return (input.points.row(a) - input.points.row(b)).norm(); };
+    std::unordered_map<int32_t, double> chain_length;
+    for (const auto& [a, b] : found) chain_length[root(a)] += length(a, b);
+    std::vector<Eigen::Vector3d> samples;
+    for (const auto& [a, b] : found) {
+        if (chain_length[root(a)] < min_length) continue;
         const Eigen::Vector3d pa = input.points.row(a).transpose(), pb = input.points.row(b).transpose();
         ++degree_[a];
         ++degree_[b];
@@ -30,11 +50,16 @@ AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double
             sample_segment_.push_back(segment);
         }
     }
+    std::vector<std::pair<Eigen::Vector3d, int>> corners;
     for (const auto& [v, count] : degree_)
-        if (count != 2) corners_.push_back(input.points.row(v).transpose());
-    std::sort(corners_.begin(), corners_.end(), [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
-        return std::lexicographical_compare(l.data(), l.data() + 3, r.data(), r.data() + 3);
+        if (count != 2) corners.emplace_back(input.points.row(v).transpose(), count);
+    std::sort(corners.begin(), corners.end(), [](const auto& l, const auto& r) {
+        return std::lexicographical_compare(l.first.data(), l.first.data() + 3, r.first.data(), r.first.data() + 3);
     });
+    for (const auto& [x, count] : corners) {
+        corners_.push_back(x);
+        corner_degrees_.push_back(count);
+    }
     spacing_ = spacing;
     if (!samples.empty()) {
         Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> m(static_cast<Eigen::Index>(samples.size()), 3);

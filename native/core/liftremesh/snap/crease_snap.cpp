@@ -30,8 +30,9 @@ public:
 
     const EditableMesh& mesh() const { return mesh_; }
 
-    // Moves v to x with the flips that follow, or leaves everything as it was (see the header).
-    bool snap(int32_t v, const Eigen::Vector3d& x, long& flips) {
+    // Moves v to x with the flips that follow, or leaves everything as it was (see the header),
+    // where the fan of v lies farther than `depth` from x.
+    bool snap(int32_t v, const Eigen::Vector3d& x, double depth, double kappa_floor, long& flips) {
         if (fans_[v].empty()) return false; // not a vertex of the surface
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
@@ -41,7 +42,7 @@ public:
             const Eigen::Vector3d near = closest_point_on_triangle(x, mesh_.points[f[0]], mesh_.points[f[1]], mesh_.points[f[2]]);
             cut2 = std::min(cut2, (near - x).squaredNorm());
         }
-        if (!(cut2 > params_.tolerance * params_.tolerance)) return false;
+        if (!(cut2 > depth * depth)) return false;
         saved_.clear();
         for (int t : fans_[v]) save(t);
         const Eigen::Vector3d was = mesh_.points[v];
@@ -52,13 +53,13 @@ public:
             long pass_flips = 0;
             const std::vector<int> around = touched();
             for (int t : around)
-                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before);
+                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before, kappa_floor);
             made += pass_flips;
             if (pass_flips == 0) break;
         }
         const Measure after = measure(touched());
         const bool ok = after.off <= before.off &&
-                        after.worst_kappa >= params_.kappa_floor &&
+                        after.worst_kappa >= kappa_floor &&
                         after.farthest <= std::max(params_.tolerance, before.farthest);
         if (ok) {
             flips += made;
@@ -141,12 +142,12 @@ private:
                 if (w == d) return true;
         return false;
     }
-    long try_flip(int t, int j, const Measure& before) {
+    long try_flip(int t, int j, const Measure& before, double kappa_floor) {
         const auto q = quad(t, j);
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
-                              std::min(params_.kappa_floor, before.worst_kappa)) &&
+                              std::min(kappa_floor, before.worst_kappa)) &&
             !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
             return 0;
         const auto [n1, n2] = EditableMesh::flipped(*q);
@@ -175,22 +176,52 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
-        !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0))
+        !(std::isnan(params.min_depth) || params.min_depth >= 0.0) ||
+        !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0) ||
+        !(params.corner_kappa_floor >= 0.0) || !(params.min_length >= 0.0))
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
-                           "radius not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
+                           "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floors not negative");
     CreaseSnapStats stats;
-    const AcuteCreases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius);
+    const AcuteCreases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius, params.min_length);
     stats.creases = creases.size();
     if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
-    // The vertices near a crease, nearest first (then by index: deterministic), after the
-    // vertex nearest to each corner of the creases.
-    std::vector<std::tuple<double, int32_t, Eigen::Vector3d>> near;
-    for (const Eigen::Vector3d& c : creases.corners()) {
-        Eigen::Index nearest = -1;
-        const double d2 = (mesh.points.rowwise() - c.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-        if (d2 > 0.0 && d2 <= params.corner_radius * params.corner_radius)
-            near.emplace_back(-1.0, static_cast<int32_t>(nearest), c);
+    Snapper snapper(mesh, input_tree, params);
+    // A vertex moves once: a second entry (near two corners, or a corner and a crease) holds a
+    // target found from where it was.
+    std::vector<char> moved(static_cast<size_t>(mesh.points.rows()), 0);
+    // A crease vertex moves where the crease is cut deeper than min_depth; a corner's, with
+    // min_depth given (the feature angle's creases), wherever it is not on the corner.
+    const double depth = std::isnan(params.min_depth) ? params.tolerance : params.min_depth;
+    const double corner_depth = std::isnan(params.min_depth) ? params.tolerance : 0.0;
+    // Each corner of the creases first: the nearest vertex within corner_radius that can move
+    // onto it, the next nearest where the nearest's move would spoil its triangles (a corner
+    // whose nearest vertex belongs to another corner, or sits in a fan too poor to move).
+    constexpr int kCornerCandidates = 4;
+    for (size_t i = 0; i < creases.corners().size(); ++i) {
+        const Eigen::Vector3d& c = creases.corners()[i];
+        // Where creases meet, the corner's floor; where one ends (fading into a tangent join),
+        // the creases'.
+        const double floor = creases.corner_degrees()[i] >= 3 ? params.corner_kappa_floor : params.kappa_floor;
+        const Eigen::VectorXd d2 = (mesh.points.rowwise() - c.transpose()).rowwise().squaredNorm();
+        std::vector<std::pair<double, int32_t>> candidates;
+        for (Eigen::Index v = 0; v < d2.size(); ++v)
+            if (d2(v) <= params.corner_radius * params.corner_radius) candidates.emplace_back(d2(v), static_cast<int32_t>(v));
+        std::sort(candidates.begin(), candidates.end());
+        if (!candidates.empty() && candidates.front().first == 0.0) {
+            moved[candidates.front().second] = 1; // a vertex on the corner already
+            continue;
+        }
+        for (size_t k = 0; k < candidates.size() && k < kCornerCandidates; ++k) {
+            const int32_t v = candidates[k].second;
+            if (!moved[v] && snapper.snap(v, c, corner_depth, floor, stats.flipped)) {
+                moved[v] = 1;
+                ++stats.moved;
+                break;
+            }
+        }
     }
+    // Then the vertices near a crease, nearest first (then by index: deterministic).
+    std::vector<std::tuple<double, int32_t, Eigen::Vector3d>> near;
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
         const Eigen::Vector3d p = mesh.points.row(v).transpose();
         if (const auto x = creases.closest(p, params.radius); x && (*x - p).squaredNorm() > 0.0)
@@ -198,12 +229,8 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     }
     std::sort(near.begin(), near.end(),
               [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
-    Snapper snapper(mesh, input_tree, params);
-    // A vertex moves once: a second entry (near two corners, or a corner and a crease) holds a
-    // target found from where it was.
-    std::vector<char> moved(static_cast<size_t>(mesh.points.rows()), 0);
     for (const auto& [distance, v, x] : near)
-        if (!moved[v] && snapper.snap(v, x, stats.flipped)) {
+        if (!moved[v] && snapper.snap(v, x, depth, params.kappa_floor, stats.flipped)) {
             moved[v] = 1;
             ++stats.moved;
         }

@@ -14,14 +14,17 @@
 // the output vertex nearest to each corner of the creases (an input vertex where one ends or
 // several meet), if within `corner_radius`, then each output vertex within `radius` of a crease,
 // nearest first, is moved onto it (its closest point there), when the crease is cut deeper than
-// `tolerance` there (the vertex's triangles lie farther than that from the point). The edges of
+// `min_depth` there (the vertex's triangles lie farther than that from the point). With the
+// feature angle (RemeshParams::feature_angle) the same moves put every crease over it, not only
+// the acute ones, on the output's vertices and edges. The edges of
 // its fan that then cross the wedge are flipped (the other diagonal of their quad lies at most
 // half as far from the input: crease_flip_fits, flip_rules.h), and so are those whose quality
 // flip keeps the surface (quality_flip_keeps_surface). The move and its flips stand only
 // together, and only if
 // - no more of the triangles they change turn from the input's normal nearest to their
 //   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
-// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor;
+// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor (corner_kappa_floor for
+//   a move onto a corner);
 // - none of them ends farther from the input than both `tolerance` and the farthest of them
 //   before.
 // Otherwise the mesh is left as it was. Where the output follows the creases within the
@@ -31,6 +34,8 @@
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/spatial/reference.h"
+
+#include <limits>
 
 namespace liftremesh {
 
@@ -44,11 +49,22 @@ struct CreaseSnapParams {
     //! Distance from the input (see above; the pipeline's: kInputTolerance, steps.h). Positive
     //! and finite.
     double tolerance = 0.0;
+    //! A vertex moves only where the crease is cut deeper than this (its triangles lie farther
+    //! from the point): the tolerance for the knife edges' repair, less for every crease over the
+    //! feature angle (steps.h). Not negative; a NaN takes the tolerance.
+    double min_depth = std::numeric_limits<double>::quiet_NaN();
     //! An input edge is an acute crease when its two triangles' normals turn by more than this
     //! (degrees): 120 is an interior angle under 60 degrees.
     double min_turn_deg = 120.0;
+    //! Creases (chains of crease edges joined at their ends) shorter than this in all are left
+    //! alone: a scan's noise, a facet's slip. Not negative.
+    double min_length = 0.0;
     //! See above; the Hausdorff refinement's floor.
     double kappa_floor = kKappaFloorOnInput;
+    //! The same for a move onto a corner where three or more creases meet: lower where every
+    //! corner is to get a vertex (steps.h), a corner's fan being few triangles that the polish
+    //! then raises.
+    double corner_kappa_floor = kKappaFloorOnInput;
 };
 
 struct CreaseSnapStats {
