@@ -154,7 +154,7 @@ def parameter_table(rows):
         flag = "`--%s %s`" % (row["name"].replace("_", "-"), row.get("metavar", "")) if row.get("metavar") \
             else "`--%s`" % row["name"].replace("_", "-")
         meaning = row.get("help", "")
-        unit = {"length": "input units", "unit-ball": "unit ball", "angle": "degrees"}.get(row.get("unit", ""), row.get("unit", ""))
+        unit = {"length": "input units", "unit-ball": "unit ball"}.get(row.get("unit", ""), row.get("unit", ""))
         lines.append("| " + " | ".join(cell(v) for v in (flag, row.get("expected", ""), row.get("default", ""), unit,
                                                         row.get("symbol", ""), meaning)) + " |")
     return "\n".join(lines)

@@ -421,7 +421,7 @@ released while it runs.)doc");
           "'choice', 'flag'), min and max (None: unbounded), min_open and max_open (the end excluded), "
           "replaces (the parameter a set value replaces, 0 meaning unset; or None), choices, defaults "
           "({'isotropic': v, 'anisotropic': v}), decimals and step (for spin boxes), unit ('length', "
-          "'unit-ball', 'angle' (degrees) or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
+          "'unit-ball' or ''), expected (the accepted values in words), metavar, symbol (the paper's), "
           "default (as text), help, label (the name a GUI shows) and gui_help (what it does to the mesh, in "
           "a CAD user's words, lengths in mm).");
 }

@@ -164,7 +164,6 @@ const std::vector<ParameterInfo>& parameter_table() {
         Row("feature_angle", K::Real, &P::feature_angle)
             .range(0, 180, true)
             .spin(1, 5)
-            .unit("angle")
             .text("DEG", "", "input edges turning by more than this many degrees are creases the output follows "
                              "(180 = none)")
             .words("Feature angle",

@@ -111,7 +111,7 @@ struct ParameterInfo {
     double anisotropic_default = 0.0;
     int decimals = 0;    //!< Real: digits a spin box shows; an editor keeps 10^-decimals off an open end
     double step = 1.0;   //!< increment of a spin box
-    std::string unit;    //!< "length" (input units), "unit-ball" (units of the unit ball), "angle" (degrees), or ""
+    std::string unit;    //!< "length" (input units), "unit-ball" (units of the unit ball), or ""
     std::string metavar; //!< placeholder of the value in usage texts ("N", "SIGMA", ...)
     std::string symbol;  //!< the paper's symbol, or "" if none
     std::string default_text; //!< default as text ("0.4 (isotropic), 0 (anisotropic)")

@@ -30,19 +30,18 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.crease_snap.radius = 0.35 * spacing * scale;
     s.crease_snap.corner_radius = spacing * scale;
     s.crease_snap.tolerance = tolerance;
-    s.crease_snap.kappa_floor = s.crease_snap.corner_kappa_floor = s.hausdorff_refinement.kappa_floor;
+    s.crease_snap.kappa_floor = s.hausdorff_refinement.kappa_floor;
     // Every crease over the feature angle (issue 35): its row of vertices within 0.1 h of it,
     // so a vertex whose triangles cut it 0.02 h deep or more moves onto it, from up to h / 2
     // away (the rows of the faces next to a crease that is no sharper than 30 degrees lie nearer
-    // than on a knife edge). Each corner gets a vertex: the few triangles of its fan may go down
-    // to a little over kKappaFloor, which the polish then raises. A crease shorter than 2 h in
-    // all is no feature the output can follow (a scan's noise, a facet's slip). The moves and
-    // their flips keep the surface within 0.1 h of the input, not the repair's 0.15 h: the
-    // creases are followed without the Hausdorff distance of the CAD meshes going up.
+    // than on a knife edge). A crease shorter than 2 h in all is no feature the output can
+    // follow (a scan's noise, a facet's slip). The moves and their flips keep the surface within
+    // 0.1 h of the input, not the repair's 0.15 h, and kappa >= 0.45 as the repair does: the
+    // creases are followed without the Hausdorff distance or kappa min of the CAD meshes falling
+    // back.
     s.feature_snap = s.crease_snap;
     s.feature_snap.min_depth = 0.02 * spacing * scale;
     s.feature_snap.radius = 0.5 * spacing * scale;
-    s.feature_snap.corner_kappa_floor = kKappaFloor + 0.05;
     s.feature_snap.min_length = 2.0 * spacing * scale;
     s.feature_snap.tolerance = 0.1 * spacing * scale;
 

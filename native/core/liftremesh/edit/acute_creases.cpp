@@ -50,16 +50,11 @@ AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double
             sample_segment_.push_back(segment);
         }
     }
-    std::vector<std::pair<Eigen::Vector3d, int>> corners;
     for (const auto& [v, count] : degree_)
-        if (count != 2) corners.emplace_back(input.points.row(v).transpose(), count);
-    std::sort(corners.begin(), corners.end(), [](const auto& l, const auto& r) {
-        return std::lexicographical_compare(l.first.data(), l.first.data() + 3, r.first.data(), r.first.data() + 3);
+        if (count != 2) corners_.push_back(input.points.row(v).transpose());
+    std::sort(corners_.begin(), corners_.end(), [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
+        return std::lexicographical_compare(l.data(), l.data() + 3, r.data(), r.data() + 3);
     });
-    for (const auto& [x, count] : corners) {
-        corners_.push_back(x);
-        corner_degrees_.push_back(count);
-    }
     spacing_ = spacing;
     if (!samples.empty()) {
         Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> m(static_cast<Eigen::Index>(samples.size()), 3);

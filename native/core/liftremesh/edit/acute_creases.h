@@ -30,9 +30,6 @@ public:
     //! Where a crease ends or meets others: its input vertices with other than two crease edges,
     //! in lexicographic order.
     const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
-    //! The number of crease edges at each corner (1 where a crease ends, 3 or more where creases
-    //! meet), in the order of corners().
-    const std::vector<int>& corner_degrees() const { return corner_degrees_; }
     //! The closest point of a crease to p, if one lies within `radius`.
     std::optional<Eigen::Vector3d> closest(const Eigen::Vector3d& p, double radius) const;
 
@@ -41,7 +38,6 @@ private:
     std::vector<int32_t> sample_segment_;
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
-    std::vector<int> corner_degrees_;
     std::optional<KdTree> tree_;
     double spacing_ = 0.0;
     mutable std::vector<int32_t> found_;

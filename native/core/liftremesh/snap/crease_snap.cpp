@@ -32,7 +32,7 @@ public:
 
     // Moves v to x with the flips that follow, or leaves everything as it was (see the header),
     // where the fan of v lies farther than `depth` from x.
-    bool snap(int32_t v, const Eigen::Vector3d& x, double depth, double kappa_floor, long& flips) {
+    bool snap(int32_t v, const Eigen::Vector3d& x, double depth, long& flips) {
         if (fans_[v].empty()) return false; // not a vertex of the surface
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
@@ -53,13 +53,13 @@ public:
             long pass_flips = 0;
             const std::vector<int> around = touched();
             for (int t : around)
-                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before, kappa_floor);
+                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before);
             made += pass_flips;
             if (pass_flips == 0) break;
         }
         const Measure after = measure(touched());
         const bool ok = after.off <= before.off &&
-                        after.worst_kappa >= kappa_floor &&
+                        after.worst_kappa >= params_.kappa_floor &&
                         after.farthest <= std::max(params_.tolerance, before.farthest);
         if (ok) {
             flips += made;
@@ -142,12 +142,12 @@ private:
                 if (w == d) return true;
         return false;
     }
-    long try_flip(int t, int j, const Measure& before, double kappa_floor) {
+    long try_flip(int t, int j, const Measure& before) {
         const auto q = quad(t, j);
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
-                              std::min(kappa_floor, before.worst_kappa)) &&
+                              std::min(params_.kappa_floor, before.worst_kappa)) &&
             !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
             return 0;
         const auto [n1, n2] = EditableMesh::flipped(*q);
@@ -178,9 +178,9 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
         !(std::isnan(params.min_depth) || params.min_depth >= 0.0) ||
         !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0) ||
-        !(params.corner_kappa_floor >= 0.0) || !(params.min_length >= 0.0))
+        !(params.min_length >= 0.0))
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
-                           "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floors not negative");
+                           "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
     CreaseSnapStats stats;
     const AcuteCreases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius, params.min_length);
     stats.creases = creases.size();
@@ -197,11 +197,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     // onto it, the next nearest where the nearest's move would spoil its triangles (a corner
     // whose nearest vertex belongs to another corner, or sits in a fan too poor to move).
     constexpr int kCornerCandidates = 4;
-    for (size_t i = 0; i < creases.corners().size(); ++i) {
-        const Eigen::Vector3d& c = creases.corners()[i];
-        // Where creases meet, the corner's floor; where one ends (fading into a tangent join),
-        // the creases'.
-        const double floor = creases.corner_degrees()[i] >= 3 ? params.corner_kappa_floor : params.kappa_floor;
+    for (const Eigen::Vector3d& c : creases.corners()) {
         const Eigen::VectorXd d2 = (mesh.points.rowwise() - c.transpose()).rowwise().squaredNorm();
         std::vector<std::pair<double, int32_t>> candidates;
         for (Eigen::Index v = 0; v < d2.size(); ++v)
@@ -213,7 +209,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
         }
         for (size_t k = 0; k < candidates.size() && k < kCornerCandidates; ++k) {
             const int32_t v = candidates[k].second;
-            if (!moved[v] && snapper.snap(v, c, corner_depth, floor, stats.flipped)) {
+            if (!moved[v] && snapper.snap(v, c, corner_depth, stats.flipped)) {
                 moved[v] = 1;
                 ++stats.moved;
                 break;
@@ -230,7 +226,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     std::sort(near.begin(), near.end(),
               [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
     for (const auto& [distance, v, x] : near)
-        if (!moved[v] && snapper.snap(v, x, depth, params.kappa_floor, stats.flipped)) {
+        if (!moved[v] && snapper.snap(v, x, depth, stats.flipped)) {
             moved[v] = 1;
             ++stats.moved;
         }

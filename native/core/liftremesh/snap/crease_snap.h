@@ -23,8 +23,7 @@
 // together, and only if
 // - no more of the triangles they change turn from the input's normal nearest to their
 //   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
-// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor (corner_kappa_floor for
-//   a move onto a corner);
+// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor;
 // - none of them ends farther from the input than both `tolerance` and the farthest of them
 //   before.
 // Otherwise the mesh is left as it was. Where the output follows the creases within the
@@ -61,10 +60,6 @@ struct CreaseSnapParams {
     double min_length = 0.0;
     //! See above; the Hausdorff refinement's floor.
     double kappa_floor = kKappaFloorOnInput;
-    //! The same for a move onto a corner where three or more creases meet: lower where every
-    //! corner is to get a vertex (steps.h), a corner's fan being few triangles that the polish
-    //! then raises.
-    double corner_kappa_floor = kKappaFloorOnInput;
 };
 
 struct CreaseSnapStats {
