@@ -86,6 +86,9 @@ struct alignas(64) ChunkSlot {
 //! the thread count.
 int rvd_chunks(const LiftedSurface& surface);
 
+struct RvdCache;   // below
+struct RvdScratch; // rvd.cpp: per-thread scratch that one diagram hands to the next
+
 //! Per-site sums of a visitor, kept per chunk (one entry per site of the chunk, found by
 //! RvdPolygon::chunk_rank) and added up chunk after chunk: the same sums, to the bit, whatever
 //! the thread count.
@@ -94,7 +97,7 @@ class ChunkSiteSums {
 public:
     //! With `cache`, each chunk's room is made for as many sites as its chunk held in the cache's
     //! last diagram (RvdCache::chunk_sites), so that the sums grow without moving.
-    ChunkSiteSums(const LiftedSurface& surface, const T& zero, const struct RvdCache* cache = nullptr);
+    ChunkSiteSums(const LiftedSurface& surface, const T& zero, const RvdCache* cache = nullptr);
     //! The running sum of the polygon's site in its chunk, `zero` the first time; from the visitor.
     T& of(int chunk, const RvdPolygon& polygon) {
         std::vector<Entry>& entries = chunks_[chunk].value;
@@ -145,7 +148,7 @@ struct RvdCache {
     //! Per thread, the per-site scratch of the last diagram (rvd.cpp), kept so that the next
     //! one reuses its memory: at 100k sites, 5.6 MB a thread that fresh pages would fault in at
     //! every evaluation.
-    std::shared_ptr<struct RvdScratch> scratch;
+    std::shared_ptr<RvdScratch> scratch;
 };
 
 template <class T>
