@@ -20,16 +20,8 @@ import time
 
 import numpy as np
 
-
-def kappa(points, triangles):
-    """Eq. 26 per triangle: 16 area^2 / (l1 l2 l3 (l1 + l2 + l3)), as measure/quality.cpp."""
-    a, b, c = (points[triangles[:, i]] for i in range(3))
-    l1 = np.linalg.norm(b - c, axis=1)
-    l2 = np.linalg.norm(c - a, axis=1)
-    l3 = np.linalg.norm(a - b, axis=1)
-    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    denom = l1 * l2 * l3 * (l1 + l2 + l3)
-    return np.clip(np.where(denom > 0, 16.0 * area * area / np.where(denom > 0, denom, 1.0), 0.0), 0.0, 1.0)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "freecad"))
+from mesh_checks import kappa  # noqa: E402  (Eq. 26, measured independently of LiftRemesh)
 
 
 def mesh_arrays(gmsh):

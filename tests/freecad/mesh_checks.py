@@ -61,7 +61,9 @@ def kappa(points, triangles):
     a, b, c = (points[triangles[:, i]] for i in range(3))
     l1, l2, l3 = (np.linalg.norm(u - v, axis=1) for u, v in ((b, c), (c, a), (a, b)))
     area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    return 16.0 * area ** 2 / (l1 * l2 * l3 * (l1 + l2 + l3))
+    denom = l1 * l2 * l3 * (l1 + l2 + l3)
+    # A triangle with a zero-length edge is degenerate: 0, as measure/quality.cpp gives it.
+    return np.clip(np.divide(16.0 * area ** 2, denom, out=np.zeros_like(denom), where=denom > 0), 0.0, 1.0)
 
 
 def sharp_edge_length(points, triangles, angle_deg=60.0):
