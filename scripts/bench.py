@@ -25,6 +25,7 @@ import time
 
 import bench_gmsh
 import bench_scale
+from bench_scale import fmt
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -107,11 +108,6 @@ def host_gauge():
             x = (x * 31 + i) % 1000003
         return time.perf_counter() - start
     return min(once() for _ in range(3))
-
-
-def fmt(value, spec, scale=1.0):
-    """A number formatted; "-" for a missing value (the report writes non-finite ones as null)."""
-    return "-" if value is None else format(scale * value, spec)
 
 
 def table(rows):

@@ -23,6 +23,7 @@ SCALE_RUNS = [(2, 10000), (2, 30000), (2, 100000), (0, 100000), (1, 100000)]  # 
 
 
 def fmt(value, spec, scale=1.0):
+    """A number formatted; "-" for a missing value (the report writes non-finite ones as null)."""
     return "-" if value is None else format(scale * value, spec)
 
 
