@@ -18,10 +18,10 @@ Eigen::Vector3d barycentric_gradient(const Eigen::Vector3d& x1, const Eigen::Vec
 }
 } // namespace
 
-Eigen::VectorXd triangle_density(const Mesh& mesh, const Points& normals, double eta) {
+Eigen::VectorXd triangle_normal_turn(const Mesh& mesh, const Points& normals, double eta) {
     const Eigen::Index nf = mesh.triangles.rows();
     const double cap = 2.0 / eta;
-    Eigen::VectorXd rho(nf);
+    Eigen::VectorXd turn(nf);
     for (Eigen::Index f = 0; f < nf; ++f) {
         Eigen::Vector3d x[3], n[3];
         for (int j = 0; j < 3; ++j) {
@@ -29,16 +29,20 @@ Eigen::VectorXd triangle_density(const Mesh& mesh, const Points& normals, double
             n[j] = normals.row(mesh.triangles(f, j)).transpose();
         }
         if (!((x[1] - x[0]).cross(x[2] - x[0]).norm() > 0.0)) {
-            rho[f] = 1.0;
+            turn[f] = 0.0;
             continue;
         }
         Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero(); // dn/dx, Eq. 22
         for (int j = 0; j < 3; ++j)
             jacobian += n[j] * barycentric_gradient(x[j], x[(j + 1) % 3], x[(j + 2) % 3]).transpose();
         const double largest_row = jacobian.rowwise().norm().maxCoeff();
-        rho[f] = 1.0 + std::min(largest_row, cap); // Eq. 24
+        turn[f] = std::min(largest_row, cap);
     }
-    return rho;
+    return turn;
+}
+
+Eigen::VectorXd triangle_density(const Mesh& mesh, const Points& normals, double eta) {
+    return (1.0 + triangle_normal_turn(mesh, normals, eta).array()).matrix(); // Eq. 24
 }
 
 Eigen::VectorXd density_weights(const Eigen::VectorXd& rho, double delta) {

@@ -6,6 +6,11 @@
 
 namespace liftremesh {
 
+//! #F max_i |dn_i|, the fastest turn of the interpolated vertex normals over each triangle
+//! (Eqs. 22, 23; the curvature where the normals are exact), capped at 2 / eta as
+//! triangle_density says; 0 for a degenerate triangle. In the mesh's inverse units.
+Eigen::VectorXd triangle_normal_turn(const Mesh& mesh, const Points& normals, double eta);
+
 //! #F rho_p = 1 + max_i |dn_i| (Eq. 24), with dn/dx = sum_j n_j (dlambda_j/dx)^t (Eqs. 22, 23)
 //! the Jacobian of the linearly interpolated vertex normals over the triangle, and dn_i its
 //! rows. `normals` is #V by 3. Because the normals are averages over balls of radius eta, their
