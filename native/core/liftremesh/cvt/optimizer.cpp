@@ -37,6 +37,12 @@ struct Problem {
     std::exception_ptr error; // an exception from the objective, rethrown after lbfgs returns
     LiftedPoints sites, gradient;
     RvdCache* cache = nullptr; // neighbour lists carried from one iterate to the next
+    // The variables L-BFGS sees are scale_k v_k (empty: v_k), scale_k = sqrt(m_k / mean m) for
+    // the cells' masses m_k at the start of a run: the objective's Hessian is about 2 m_k per
+    // site (Eq. 7), so that where the density varies by orders of magnitude (size_field.h) its
+    // condition number falls back to what a uniform density gives, and the iterations converge
+    // on the small cells as on the large ones.
+    Eigen::VectorXd scale;
 };
 
 lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const int n,
@@ -44,7 +50,9 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
     auto& p = *static_cast<Problem*>(instance);
     try {
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
+        if (p.scale.size() > 0) p.sites.array().colwise() /= p.scale.array();
         const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, p.cache);
+        if (p.scale.size() > 0) p.gradient.array().colwise() /= p.scale.array();
         std::copy(p.gradient.data(), p.gradient.data() + n, g);
         if (p.evaluations++ == 0) p.first_energy = f; // libLBFGS evaluates the start point first
         return f;
@@ -73,6 +81,17 @@ int on_iteration(void* instance, const lbfgsfloatval_t*, const lbfgsfloatval_t*,
 }
 
 // One phase: up to `iterations` L-BFGS iterations at a fixed sigma. Returns iterations done.
+// sqrt(m_k / mean m) for the cells' masses m_k (Problem::scale); an empty cell's, or one of
+// almost no mass, as if it had a hundredth of the mean.
+Eigen::VectorXd preconditioner(const LiftedSurface& surface, const LiftedPoints& sites, int threads, RvdCache* cache) {
+    const Eigen::VectorXd mass = restricted_cell_masses(surface, sites, threads, cache);
+    const double mean = mass.mean();
+    Eigen::VectorXd scale(mass.size());
+    for (Eigen::Index k = 0; k < mass.size(); ++k)
+        scale[k] = mean > 0.0 ? std::sqrt(std::max(mass[k] / mean, 0.01)) : 1.0;
+    return scale;
+}
+
 int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
     lbfgs_parameter_t param;
     lbfgs_parameter_init(&param);
@@ -84,13 +103,18 @@ int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
     const int n = static_cast<int>(sites.size());
     lbfgsfloatval_t* x = lbfgs_malloc(n);
     if (!x) throw NumericalFailure("out of memory for " + std::to_string(n) + " optimisation variables");
-    std::copy(sites.data(), sites.data() + n, x);
+    if (problem.scale.size() > 0) problem.scale = preconditioner(*problem.surface, sites, problem.threads, problem.cache);
+    LiftedPoints start = sites;
+    if (problem.scale.size() > 0) start.array().colwise() *= problem.scale.array();
+    std::copy(start.data(), start.data() + n, x);
     lbfgsfloatval_t fx = 0.0;
     problem.iterations = 0;
     const int status = lbfgs(n, x, &fx, evaluate, on_iteration, &problem, &param);
     // On success, a reached budget, or a failed line search, x holds the best point found.
-    if (!problem.error && std::all_of(x, x + n, [](double v) { return std::isfinite(v); }))
+    if (!problem.error && std::all_of(x, x + n, [](double v) { return std::isfinite(v); })) {
         std::copy(x, x + n, sites.data());
+        if (problem.scale.size() > 0) sites.array().colwise() /= problem.scale.array();
+    }
     lbfgs_free(x);
     if (problem.cancelled) throw Cancelled("remeshing was cancelled during the optimisation");
     if (problem.error) std::rethrow_exception(problem.error);
@@ -115,6 +139,10 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
     problem.cache = cache ? cache : &own;
     problem.iteration_offset = 0;
     problem.total = iterations;
+    // Preconditioned where the weights vary more than rho^delta alone makes them (at most
+    // (1 + 2 / eta)^delta, 6.3 with the defaults): a size field's (size_field.h).
+    if (surface.weights.size() > 0 && surface.weights.maxCoeff() > kPreconditionContrast * surface.weights.minCoeff())
+        problem.scale = Eigen::VectorXd::Ones(sites.rows());
     // Phase 1 (sigma = 1), then phase 2 (sigma) (Section 6.2.2). A phase whose line search
     // fails early is restarted (fresh L-BFGS memory) while it still makes progress.
     const std::pair<double, int> phases[2] = {{1.0, schedule.plain}, {sigma, schedule.feature}};

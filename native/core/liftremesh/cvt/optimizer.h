@@ -29,6 +29,10 @@ Schedule two_phase_schedule(int iterations);
 //! `cache` (may be null) is the diagram's RvdCache the evaluations use: given, it is left with
 //! the lists and seeds of the last diagram, which the restricted Delaunay triangulation of the
 //! result can start from.
+//! Weights varying by more than this factor over the surface make optimize_sites precondition
+//! the sites by their cells' masses (optimizer.cpp).
+constexpr double kPreconditionContrast = 16.0;
+
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
                               int threads, const ProgressCallback& progress = {}, RvdCache* cache = nullptr);
 

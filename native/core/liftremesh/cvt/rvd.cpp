@@ -475,15 +475,32 @@ void compute_rvd(const LiftedSurface& surface, const LiftedPoints& sites, int th
         compute_rvd_fixed<6>(surface, sites, n, visit, c);
 }
 
-Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
-                                      RvdCache* cache) {
+namespace {
+
+// Per site, the areas of its cell's polygons, each times weight(triangle).
+template <class Weight>
+Eigen::VectorXd cell_sums(const LiftedSurface& surface, const LiftedPoints& sites, int threads, RvdCache* cache,
+                          Weight weight) {
     ChunkSiteSums<double> areas(surface, 0.0, cache);
     compute_rvd(
-        surface, sites, threads, [&](int chunk, const RvdPolygon& poly) { areas.of(chunk, poly) += polygon_area(poly); },
+        surface, sites, threads,
+        [&](int chunk, const RvdPolygon& poly) { areas.of(chunk, poly) += weight(poly.triangle) * polygon_area(poly); },
         cache);
     Eigen::VectorXd total = Eigen::VectorXd::Zero(sites.rows());
     areas.for_each([&](int32_t site, double area) { total[site] += area; });
     return total;
+}
+
+} // namespace
+
+Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
+                                      RvdCache* cache) {
+    return cell_sums(surface, sites, threads, cache, [](long) { return 1.0; });
+}
+
+Eigen::VectorXd restricted_cell_masses(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
+                                       RvdCache* cache) {
+    return cell_sums(surface, sites, threads, cache, [&](long p) { return surface.weights[p]; });
 }
 
 } // namespace liftremesh

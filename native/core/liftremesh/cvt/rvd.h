@@ -177,4 +177,9 @@ double polygon_area(const RvdPolygon& polygon);
 Eigen::VectorXd restricted_cell_areas(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0,
                                       RvdCache* cache = nullptr);
 
+//! #S masses of the restricted cells, sum over p of w_p |Omega_{k|T_p}| (the weights of Eq. 25):
+//! half the objective's Hessian at each site, a cell's own block (Eq. 7). `cache` as in compute_rvd.
+Eigen::VectorXd restricted_cell_masses(const LiftedSurface& surface, const LiftedPoints& sites, int threads = 0,
+                                       RvdCache* cache = nullptr);
+
 } // namespace liftremesh
