@@ -35,6 +35,8 @@ QUALITY = {
     "kappa_mean": "mean kappa over the triangles",
     "kappa_histogram": "triangle counts with kappa in [0, 0.1), [0.1, 0.2), ..., [0.9, 1] (10 bins)",
     "min_angle_deg": "smallest interior angle of any triangle, in degrees",
+    "edge_length_min": "the shortest edge, in input units",
+    "edge_length_max": "the longest edge, in input units",
     "boundary_edges": "edges used by exactly one triangle (0 for a closed surface)",
     "boundary_loops": "connected components of the boundary edges: holes and open borders",
     "nonmanifold_edges": "edges used by three or more triangles",
@@ -78,6 +80,15 @@ FIELDS = {
     "sites": "sites optimised (the output's vertices before the repair adds or removes any)",
     "parts": "pieces remeshed on their own: each closed component of the input, and its open ones "
              "together",
+    "size_smallest": "the local sizing's smallest edge, in input units, as the vertices asked for meet it "
+                     "(0 with `local_sizing` off)",
+    "size_largest": "the local sizing's largest edge, in input units",
+    "size_refined_walls": "share of the input's area the local sizing refined for walls or slots thinner than "
+                          "`size_largest`",
+    "size_refined_curvature": "share of the area refined for bends tighter than `size_largest` allows (eight "
+                              "edges round a circle)",
+    "size_refined": "share of the area under `size_largest` in the end, the growth around thin and bent "
+                    "places included",
     "parts_kept": "closed parts too thin or small for their sites, which keep the input's triangles "
                   "(also a warning)",
     "iterations": "L-BFGS iterations done (with several parts, the most any took)",

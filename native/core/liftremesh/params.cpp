@@ -170,6 +170,34 @@ const std::vector<ParameterInfo>& parameter_table() {
                    "Edges of the part where its faces meet at an angle sharper than this, in degrees, keep a row of "
                    "triangle edges along them and a vertex on every corner where they meet, above 0 to 180: 30 "
                    "keeps the edges of chamfers and steps, 180 leaves sharp edges to Sensitivity alone."),
+        Row("local_sizing", K::Flag, &P::local_sizing)
+            .text("yes|no", "", "smaller edges where the part is thinner than the edge length or bends tightly")
+            .words("Local sizing",
+                   "Make the triangles smaller where the part is thinner than the edge length (walls, slots, "
+                   "small parts) or bends tightly (small holes and fillets), so that they keep their shape."),
+        Row("gradation", K::Real, &P::gradation)
+            .range(1, 3)
+            .spin(2, 0.05)
+            .text("G", "", "neighbouring edges of the local sizing differ by at most this factor")
+            .words("Growth rate",
+                   "How fast the triangles may grow away from a thin or tightly bent place, 1 to 3: each edge at "
+                   "most this many times its neighbour's length."),
+        Row("min_edge", K::Real, &P::min_edge)
+            .range(0, kInf)
+            .spin(3, 0.1)
+            .unit("length")
+            .text("H", "", "smallest edge of the local sizing, in input units (0 = a quarter of the largest)")
+            .words("Smallest edge",
+                   "The shortest edge local sizing may make, in mm (0: a quarter of the largest)."),
+        Row("max_edge", K::Real, &P::max_edge)
+            .range(0, kInf)
+            .spin(3, 0.1)
+            .unit("length")
+            .text("H", "", "largest edge, in input units (0 = the edge length or the vertex count's); "
+                           "more vertices than asked for if it needs them")
+            .words("Largest edge",
+                   "The longest edge, in mm (0: the edge length, or what the vertex count gives). The vertex "
+                   "count grows if this needs more vertices."),
         Row("delta", K::Real, &P::delta)
             .range(0, 2)
             .anisotropic(0.0) // Section 6.1
@@ -336,6 +364,12 @@ void RemeshParams::validate() const {
             row.field);
         const std::string unset = row.replaces.empty() ? "" : " (or 0 to use " + row.replaces + ")";
         throw InvalidInput(out_of_range(row, shown.str()) + unset);
+    }
+    if (min_edge > 0.0 && max_edge > 0.0 && min_edge > max_edge) {
+        std::ostringstream message;
+        message << "min_edge = " << min_edge << " is larger than max_edge = " << max_edge
+                << ": expected the smallest edge at most the largest";
+        throw InvalidInput(message.str());
     }
 }
 

@@ -44,6 +44,20 @@ struct RemeshParams {
     //! optimisation (crease_snap.h). Range (0, 180]; 180 turns the explicit creases off (the sigma
     //! term still pulls vertices onto sharp edges, as in the paper). Default 30.
     double feature_angle = 30.0;
+    //! Local sizing (size_field.h): smaller edges where the part is thinner than the edge
+    //! length or bends tightly, graded and bounded by the three below, through the CVT's density
+    //! (times rho^delta). Default true.
+    bool local_sizing = true;
+    //! Gradation g: neighbouring edges of the size field differ by at most this factor. Range
+    //! [1, 3]. Default 1.3.
+    double gradation = 1.3;
+    //! Smallest edge of the size field, in input units; 0 = a quarter of the largest. Default 0.
+    double min_edge = 0.0;
+    //! Largest edge, in input units; 0 = the edge length (or the vertex count's). With an edge
+    //! length or a largest edge the field's sizes are lengths and the vertex count is what they
+    //! need (at least the count asked for); with a vertex count alone that count is the budget
+    //! and all sizes scale together to meet it. Default 0.
+    double max_edge = 0.0;
     //! delta: exponent of the local density rho_p^delta (Eq. 21, 25). Range [0, 2].
     //! Default 0.4 isotropic, 0 anisotropic (Section 6.1).
     double delta = 0.4;

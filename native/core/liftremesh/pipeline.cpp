@@ -9,6 +9,7 @@
 #include "liftremesh/exceptions.h"
 #include "liftremesh/lift/density.h"
 #include "liftremesh/lift/normals.h"
+#include "liftremesh/lift/size_field.h"
 #include "liftremesh/lift/thin_walls.h"
 #include "liftremesh/measure/quality.h"
 #include "liftremesh/mesh/components.h"
@@ -126,48 +127,148 @@ struct Piece {
     bool closed = false;            // a closed component (solid_parts.h)
     LiftedSurface surface;
     long sites = 0;
+    // The local sizing (size_field.h), in unit-ball units: the vertices it asks for at the
+    // spacing, its smallest size and the areas it refined.
+    double sized_count = 0.0;
+    double size_smallest = 0.0;
+    SizeField size_areas;
 };
+
+// Facets turning by more than this are creases, not a bend the size field refines: a CAD
+// tessellation's facets of a hole turn by up to its angular deflection, FreeCAD's default 28.6°.
+constexpr double kBendMaxTurnDeg = 45.0;
+
+// The size field's bounds for a spacing (unit-ball units): the largest is the spacing, or the
+// largest edge if smaller; the smallest the smallest edge if set (at most the largest), else a
+// quarter of the largest: the weights' contrast, (largest / smallest)^4, slows the optimiser
+// down on the small cells, and leaves their triangles worse for the same iterations.
+SizeFieldParams size_bounds(const RemeshParams& params, const UnitBallTransform& to_unit, double spacing) {
+    SizeFieldParams bounds;
+    bounds.largest = params.max_edge > 0.0 ? std::min(spacing, params.max_edge / to_unit.scale) : spacing;
+    bounds.smallest = params.min_edge > 0.0 ? std::min(bounds.largest, params.min_edge / to_unit.scale)
+                                            : 0.25 * bounds.largest;
+    bounds.gradation = params.gradation;
+    return bounds;
+}
 
 // Vertex normals, densities and the lifted surface of a piece (Section 5.2.1, Eqs. 12, 22-24), from
 // its own triangles only: a solid's normals and walls are its own, however near another one lies.
+// With local sizing, the weights are rho^delta times the size field's (size_field.h).
 // `midpoints_left`: what the thin walls' sampling may still add, over all pieces (decreased).
 void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing,
-                long& midpoints_left) {
+                long sites_wanted, double total_area, long& midpoints_left) {
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
     const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
     // Built once the normals' own tree is freed, so that the two are never held at once.
     piece.tree = std::make_unique<AabbTree>(input);
-    const Eigen::VectorXd weights = density_weights(triangle_density(unit, normals, params.eta), params.delta); // Eqs. 22-25
-    if (const double reach = wall_reach(params.nu, spacing); params.nu > 0.0 && reach > 0.0) {
-        // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides
-        // stay apart on the lifted surface (thin_walls.h), on triangles split where their
-        // vertices alone would miss a wall: the same surface, normals and densities.
-        WallSamplingParams walls;
-        walls.reach = reach * to_unit.scale;
-        walls.nu = params.nu * to_unit.scale;
-        walls.spacing = spacing * to_unit.scale;
-        walls.tolerance = 0.1 * walls.spacing;
-        walls.min_edge = 0.25 * walls.spacing;
-        walls.max_midpoints = midpoints_left;
-        const WallSampling sampled = sample_wall_thickness(input, *piece.tree, walls);
-        midpoints_left -= static_cast<long>(sampled.midpoints.size());
-        const Eigen::VectorXd lifting = thin_wall_lifting(sampled.thickness / to_unit.scale, params.nu, spacing);
-        if (sampled.midpoints.empty()) {
-            piece.surface = make_lifted_surface(lift(unit.points, normals, lifting), unit.triangles, weights);
-            return;
-        }
-        Eigen::VectorXd split_weights(static_cast<Eigen::Index>(sampled.parent.size()));
-        for (size_t f = 0; f < sampled.parent.size(); ++f)
-            split_weights[static_cast<Eigen::Index>(f)] = weights[sampled.parent[f]];
-        piece.surface = make_lifted_surface(lift(with_midpoints(unit.points, sampled.midpoints),
-                                                 with_midpoints(normals, sampled.midpoints), lifting),
-                                            sampled.triangles, std::move(split_weights));
+    const Eigen::VectorXd turn = triangle_normal_turn(unit, normals, params.eta); // Eqs. 22-23
+    const Eigen::VectorXd weights = density_weights((1.0 + turn.array()).matrix(), params.delta); // Eqs. 24-25
+    const double reach = wall_reach(params.nu, spacing);
+    const bool thin_walls = params.nu > 0.0 && reach > 0.0;
+    const SizeFieldParams bounds = size_bounds(params, to_unit, spacing);
+    if (!thin_walls && !params.local_sizing) {
+        // Eq. 12: nu alone keeps every wall's sides apart; nu = 0, the plain surface in 3D.
+        piece.surface = make_lifted_surface(params.nu > 0.0 ? lift(unit.points, normals, params.nu) : LiftedPoints(unit.points),
+                                            unit.triangles, weights);
         return;
     }
-    // Eq. 12: nu alone keeps every wall's sides apart; nu = 0, the plain surface in 3D.
-    piece.surface = make_lifted_surface(params.nu > 0.0 ? lift(unit.points, normals, params.nu) : LiftedPoints(unit.points),
-                                        unit.triangles, weights);
+    // Eq. 12, lifted more where a wall is thinner than the spacing, so that its two sides stay
+    // apart on the lifted surface (thin_walls.h), and the sizes made smaller there; on triangles
+    // split where their vertices alone would miss a wall: the same surface, normals and densities.
+    WallSamplingParams walls;
+    walls.reach = thin_walls ? reach * to_unit.scale : 0.0;
+    walls.nu = params.nu * to_unit.scale;
+    walls.spacing = spacing * to_unit.scale;
+    walls.tolerance = 0.1 * walls.spacing;
+    walls.min_edge = 0.25 * std::min(walls.spacing, bounds.largest * to_unit.scale);
+    walls.max_midpoints = midpoints_left;
+    walls.largest_size = params.local_sizing ? bounds.largest * to_unit.scale : 0.0;
+    const WallSampling sampled = sample_wall_thickness(input, *piece.tree, walls);
+    midpoints_left -= static_cast<long>(sampled.midpoints.size());
+    const Eigen::VectorXd thickness = sampled.thickness / to_unit.scale;
+    // The mesh the surface is made of: the piece's, or its split copy, whose triangles take their
+    // parents' turn and weight.
+    Mesh split;
+    const bool was_split = !sampled.midpoints.empty();
+    if (was_split) {
+        split.points = with_midpoints(unit.points, sampled.midpoints);
+        split.triangles = sampled.triangles;
+    }
+    const Mesh& mesh = was_split ? split : unit;
+    const auto per_triangle = [&](const Eigen::VectorXd& values) {
+        if (!was_split) return values;
+        Eigen::VectorXd out(static_cast<Eigen::Index>(sampled.parent.size()));
+        for (size_t f = 0; f < sampled.parent.size(); ++f) out[static_cast<Eigen::Index>(f)] = values[sampled.parent[f]];
+        return out;
+    };
+    Eigen::VectorXd surface_weights = per_triangle(weights);
+    // The spacing the sites will have at each vertex, from which a wall's sides must lie apart.
+    Eigen::VectorXd local_spacing = Eigen::VectorXd::Constant(thickness.size(), spacing);
+    if (params.local_sizing) {
+        // Bends seen by both the input's own facets, which a crease does not fool (the eta-ball
+        // normals turn fast across it too), and the eta-ball normals, which a scan's noise does
+        // not (its facets turn fast from one to the next).
+        const Eigen::VectorXd bend =
+            triangle_bend(unit, std::min(params.feature_angle, kBendMaxTurnDeg)).cwiseMin(turn);
+        piece.size_areas = size_field(mesh, thickness, per_triangle(bend), bounds);
+        const Eigen::VectorXd density = site_density(mesh, piece.size_areas.size, bounds.largest);
+        surface_weights = sized_weights(surface_weights, density);
+        piece.sized_count = sized_vertex_count(mesh, density, bounds.largest);
+        piece.size_smallest = piece.size_areas.size.minCoeff();
+        // The field's sizes are lengths with an edge length or a largest edge; with a vertex
+        // count they all scale to meet this piece's share of it (by area).
+        const bool lengths = params.target_edge_length > 0.0 || params.max_edge > 0.0;
+        const double share = static_cast<double>(sites_wanted) * surface_area(unit) / total_area;
+        const double scale = lengths || !(share > 0.0) ? 1.0 : std::sqrt(piece.sized_count / share);
+        local_spacing = scale * piece.size_areas.size;
+    }
+    Eigen::VectorXd lifting = Eigen::VectorXd::Constant(thickness.size(), params.nu);
+    if (thin_walls)
+        for (Eigen::Index v = 0; v < lifting.size(); ++v)
+            lifting[v] = wall_lifting(thickness[v], params.nu, std::min(spacing, local_spacing[v]));
+    const Points mesh_normals = was_split ? with_midpoints(normals, sampled.midpoints) : Points();
+    const Points& surface_normals = was_split ? mesh_normals : normals;
+    piece.surface = make_lifted_surface(params.nu > 0.0 ? lift(mesh.points, surface_normals, lifting) : LiftedPoints(mesh.points),
+                                        mesh.triangles, std::move(surface_weights));
+}
+
+// The sites the local sizing asks for over all pieces (size_field.h), and its summary in the
+// report. With an edge length, the field's sizes are lengths: the count is what they give. With
+// a vertex count, that count is the budget, every size scaled by the same factor to meet it,
+// unless a largest edge is set and needs more.
+long sized_site_count(const std::vector<Piece>& pieces, const RemeshParams& params, const UnitBallTransform& to_unit,
+                      double spacing, long wanted, double input_area, RemeshReport& report) {
+    const SizeFieldParams bounds = size_bounds(params, to_unit, spacing);
+    double count = 0.0, smallest = bounds.largest;
+    SizeFieldSummary& summary = report.size_field;
+    for (const Piece& piece : pieces) {
+        count += piece.sized_count;
+        smallest = std::min(smallest, piece.size_smallest);
+        summary.walls += piece.size_areas.wall_area;
+        summary.curvature += piece.size_areas.curvature_area;
+        summary.refined += piece.size_areas.graded_area;
+    }
+    const double area = input_area / (to_unit.scale * to_unit.scale), per = area > 0.0 ? 1.0 / area : 0.0;
+    summary.walls *= per;
+    summary.curvature *= per;
+    summary.refined *= per;
+    long sites = wanted;
+    if (params.target_edge_length > 0.0 || params.max_edge > 0.0) {
+        const double n = std::round(count);
+        if (!(n <= static_cast<double>(kMaxVertices))) {
+            std::ostringstream message;
+            message << "the local sizing asks for " << n << " vertices, more than " << kMaxVertices
+                    << ": expected a larger smallest edge (min_edge) or edge length";
+            throw InvalidInput(message.str());
+        }
+        sites = std::max(params.target_edge_length > 0.0 ? 4L : wanted, static_cast<long>(n));
+    }
+    // The sizes the sites reach: the field's, scaled so that their count is the sites'.
+    const double scale = count > 0.0 ? std::sqrt(count / static_cast<double>(sites)) * to_unit.scale : to_unit.scale;
+    summary.smallest = smallest * scale;
+    summary.largest = bounds.largest * scale;
+    return sites;
 }
 
 // The sites each piece gets: the number wanted, shared as random_sites would spread them over
@@ -366,7 +467,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         throw InvalidInput("input mesh has no triangle of positive area: all " + std::to_string(input_raw.triangles.rows()) +
                            " have a repeated vertex or zero area");
     const double input_area = surface_area(input);
-    const long sites_wanted = target_site_count(params, input_area);
+    long sites_wanted = target_site_count(params, input_area); // the local sizing's, once it is known
     check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
     report.input = measure_quality(input);
     report.bbox_diagonal = bounding_box_diagonal(input.points);
@@ -374,7 +475,8 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     Mesh unit = input;
     apply_transform(to_unit, unit.points);
     // The edge length of an equilateral mesh with the vertices asked for, in unit-ball units.
-    const double spacing = std::sqrt(surface_area(unit) / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
+    const double unit_area = surface_area(unit);
+    const double spacing = std::sqrt(unit_area / area_per_vertex(1.0) / static_cast<double>(sites_wanted));
     // Each closed component on its own (solid_parts.h); one piece, the whole input, most often.
     std::vector<Piece> pieces;
     {
@@ -400,8 +502,14 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     long midpoints_left = 2 * sites_wanted; // the thin walls' sampling, over all pieces
     for (Piece& piece : pieces) {
         clock.begin("normals");
-        lift_piece(piece, params, to_unit, spacing, midpoints_left);
+        lift_piece(piece, params, to_unit, spacing, sites_wanted, unit_area, midpoints_left);
         clock.end();
+    }
+    if (params.local_sizing) {
+        const long asked = sites_wanted;
+        sites_wanted = sized_site_count(pieces, params, to_unit, spacing, asked, input_area, report);
+        if (sites_wanted > asked)
+            check_memory_budget(sites_wanted, input.triangles.rows(), resolve_threads(params.threads), physical_memory_bytes());
     }
     share_sites(pieces, sites_wanted);
     if (pieces.size() > 1) { // at least 4 sites a piece: many small solids may need more than asked for

@@ -14,6 +14,15 @@ struct StageTime {
     double seconds = 0.0;
 };
 
+//! What the local size field (size_field.h) asked for, over all pieces; zeros without one.
+struct SizeFieldSummary {
+    double smallest = 0.0;  //!< the field's smallest edge, input units, scaled as the sites asked for meet it
+    double largest = 0.0;   //!< its largest
+    double walls = 0.0;     //!< share of the input's area refined for walls or slots thinner than the largest
+    double curvature = 0.0; //!< share refined for bends tighter than the largest allows
+    double refined = 0.0;   //!< share under the largest in the end, the grading around both included
+};
+
 struct RemeshReport {
     InputCleaning input_cleaning;        //!< the input's facets dropped and turned before remeshing (input_cleaning.h)
     MeshQuality input;                   //!< once cleaned
@@ -26,6 +35,7 @@ struct RemeshReport {
                                          //!< open ones together (solid_parts.h)
     long parts_kept = 0;                 //!< of those, closed components too thin or small for their sites,
                                          //!< which keep the input's triangles (pipeline.h)
+    SizeFieldSummary size_field;         //!< the local sizing's sizes and where it refined
     int iterations = 0;                  //!< L-BFGS iterations done
     int evaluations = 0;                 //!< objective evaluations (diagrams computed), line searches included
     double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)

@@ -141,8 +141,11 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
         !(params.tolerance >= 0.0) || !std::isfinite(params.tolerance) || params.max_midpoints < 0)
         throw InvalidInput("sample_wall_thickness: the spacing and the shortest edge split must be positive and "
                            "finite, the reach, nu, the tolerance and the most midpoints not negative");
+    if (!(params.largest_size >= 0.0) || !std::isfinite(params.largest_size))
+        throw InvalidInput("sample_wall_thickness: the largest size must be finite and not negative");
     WallSampling result;
-    result.thickness = wall_thickness(mesh, tree, params.reach);
+    const double reach = std::max(params.reach, params.largest_size); // the lifting's and the size field's walls
+    result.thickness = wall_thickness(mesh, tree, reach);
     Mesh split;                  // the mesh split so far, copied at the first split
     const Mesh* current = &mesh; // the mesh, then `split`
     const auto parent_of = [&](int32_t f) { return result.parent.empty() ? f : result.parent[static_cast<size_t>(f)]; };
@@ -167,6 +170,12 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
         const double reach = std::min(params.reach, std::sqrt(params.spacing * params.spacing - enough * enough));
         return lifting(far_side(x, on, reach)) - interpolated > params.tolerance;
     };
+    // Whether x lies across from a wall thinner than the size interpolated there by more than
+    // kWallSizeSplit (WallSamplingParams::largest_size).
+    const auto size_of = [&](int32_t v) { return std::min(result.thickness[v], params.largest_size); };
+    const auto needs_size = [&](const Eigen::Vector3d& x, double interpolated, const std::vector<int32_t>& on) {
+        return params.largest_size > 0.0 && std::isfinite(far_side(x, on, interpolated / kWallSizeSplit));
+    };
     // The input triangles the split triangles [begin, end) lie in, each once.
     const auto parents = [&](const int32_t* begin, const int32_t* end) -> const std::vector<int32_t>& {
         thread_local std::vector<int32_t> on;
@@ -186,7 +195,9 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
             const SplitEdge& edge = edges[e];
             const Eigen::Vector3d middle = 0.5 * (current->points.row(edge.a) + current->points.row(edge.b)).transpose();
             const int32_t* on = edge.triangles.data();
-            marked[e] = needs(middle, 0.5 * (lifted(edge.a) + lifted(edge.b)), parents(on, on + edge.triangles.size()));
+            const std::vector<int32_t>& parent_triangles = parents(on, on + edge.triangles.size());
+            marked[e] = needs(middle, 0.5 * (lifted(edge.a) + lifted(edge.b)), parent_triangles) ||
+                        needs_size(middle, 0.5 * (size_of(edge.a) + size_of(edge.b)), parent_triangles);
         }
         std::vector<size_t> longest_of(static_cast<size_t>(current->triangles.rows()), edges.size());
         const auto length = [&](size_t e) {
@@ -206,8 +217,10 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
             const Eigen::Vector3d centroid =
                 ((current->points.row(a) + current->points.row(b) + current->points.row(c)) / 3.0).transpose();
             const int32_t triangle = static_cast<int32_t>(f);
+            const std::vector<int32_t>& parent_triangles = parents(&triangle, &triangle + 1);
             centroid_needs[static_cast<size_t>(f)] =
-                needs(centroid, (lifted(a) + lifted(b) + lifted(c)) / 3.0, parents(&triangle, &triangle + 1));
+                needs(centroid, (lifted(a) + lifted(b) + lifted(c)) / 3.0, parent_triangles) ||
+                needs_size(centroid, (size_of(a) + size_of(b) + size_of(c)) / 3.0, parent_triangles);
         }
         for (size_t f = 0; f < centroid_needs.size(); ++f)
             if (centroid_needs[f]) marked[longest_of[f]] = 1;
@@ -238,7 +251,7 @@ WallSampling sample_wall_thickness(const Mesh& mesh, const AabbTree& tree, const
 #pragma omp parallel for schedule(dynamic, 64)
         for (Eigen::Index v = first_new; v < split.points.rows(); ++v)
             result.thickness[v] =
-                far_side(split.points.row(v).transpose(), parents(around.begin(v), around.end(v)), params.reach);
+                far_side(split.points.row(v).transpose(), parents(around.begin(v), around.end(v)), reach);
     }
     result.triangles = std::move(split.triangles);
     return result;

@@ -52,7 +52,16 @@ struct WallSamplingParams {
     double min_edge = 0.0;  //!< edges no longer than this are not split (spacing / 4)
     long max_midpoints = 0; //!< no more vertices than this are added (twice the sites asked
                             //!< for): a bound on the memory, whatever the input
+    //! > 0: the largest edge of the size field (size_field.h). The thickness is then measured up
+    //! to this far too, and triangles are also split where a wall across from an edge's
+    //! midpoint or a triangle's centroid is thinner than the size interpolated from its
+    //! vertices, min(thickness, largest_size), by more than kWallSizeSplit: so that the
+    //! density a slot asks for is not spread over the large triangles beside it.
+    double largest_size = 0.0;
 };
+
+//! How much thinner than the interpolated size a wall must be to split (WallSamplingParams).
+constexpr double kWallSizeSplit = 1.25;
 
 //! The mesh's triangles split as WallSamplingParams says, all in the mesh's units.
 struct WallSampling {

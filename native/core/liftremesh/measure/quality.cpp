@@ -71,13 +71,16 @@ long measure_edges(const Mesh& mesh, const SharpEdgeCriterion& sharp, MeshQualit
     for (long e = 0; e < edges.size(); ++e) {
         const long count = edges.count(e);
         const int32_t* use = edges.uses.begin(e);
+        const double length = (mesh.points.row(edges.a[e]) - mesh.points.row(edges.b[e])).norm();
+        q.edge_length_min = e == 0 ? length : std::min(q.edge_length_min, length);
+        q.edge_length_max = std::max(q.edge_length_max, length);
         if (count == 1) boundary.emplace_back(edges.a[e], edges.b[e]);
         if (count >= 3) ++q.nonmanifold_edges;
         if (count == 2) {
             if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) q.oriented = false;
             if (normal_angle_deg(mesh, use[0], use[1]) > sharp.angle_deg &&
                 at_least_as_wide(mesh, use[0] / 3, sharp.min_width) && at_least_as_wide(mesh, use[1] / 3, sharp.min_width))
-                q.sharp_edge_length += (mesh.points.row(edges.a[e]) - mesh.points.row(edges.b[e])).norm();
+                q.sharp_edge_length += length;
         }
     }
     q.boundary_edges = static_cast<long>(boundary.size());

@@ -18,6 +18,8 @@ struct MeshQuality {
     double kappa_mean = 0.0;
     std::array<long, 10> kappa_histogram{}; //!< counts in [0, 0.1), [0.1, 0.2), ..., [0.9, 1.0]
     double min_angle_deg = 0.0;            //!< smallest interior angle of any triangle
+    double edge_length_min = 0.0;          //!< the shortest edge (mesh units)
+    double edge_length_max = 0.0;          //!< the longest edge
     long boundary_edges = 0;               //!< edges used by exactly one triangle
     //! Connected components of the boundary edges: the holes and open borders (a border that
     //! passes a vertex twice counts once).
