@@ -171,35 +171,36 @@ class MacroApiTest(unittest.TestCase):
                          "FreeCAD's Idflibs inductor RLF_7030.stp not found")
     def test_a_slot_narrower_than_the_edge_length_keeps_its_topology(self):
         """FreeCAD's inductor RLF_7030, one solid: slots 0.1 mm wide between its body and its
-        terminals, at edges of about 0.22 mm (6000 vertices) and 0.31 mm (3000). The
-        tessellation's few large triangles on the two sides of a slot have no vertex across from
-        each other, so the sides were lifted apart only where a vertex saw the wall, and the
-        result came out with Euler characteristic -12 for 2; the triangles are now split where
-        their inside lies across a wall (thin_walls.h: sample_wall_thickness). Its flanges and
-        terminals, 0.1 mm thick, were cut by edges twice as long; local sizing (size_field.h)
-        makes the cells there as small as they are thick, so at 3000 vertices the topology is
-        kept with kappa min 0.30 (measured 0.302; 0.16 and Euler characteristic 0 before). With a
-        vertex count the sites this takes, for 61% of the area, are missing on the body, whose
-        edges grow from 0.41 to 0.69 mm at 6000 vertices: Hausdorff distance 0.90% of the
-        diagonal where it was 0.51% (docs/known-gaps.md), hence 1% here."""
+        terminals, at edges of about 0.22 mm (6000 vertices). The tessellation's few large
+        triangles on the two sides of a slot have no vertex across from each other, so the sides
+        were lifted apart only where a vertex saw the wall, and the result came out with Euler
+        characteristic -12 for 2; the triangles are now split where their inside lies across a
+        wall (thin_walls.h: sample_wall_thickness). Its flanges and terminals, 0.1 mm thick, are
+        still cut by edges twice as long: kappa min 0.28 and Hausdorff distance 0.58% of the
+        diagonal (0.96% before), sharp edges 5% short (measured), so only the topology, volume
+        and distance are checked. At 3000 vertices (edges of 0.31 mm) the slots close (Euler
+        characteristic 0, kappa min 0.16, issue 35); local sizing (size_field.h) makes the cells
+        there as small as the part is thick and keeps them open with kappa min 0.30 (measured
+        0.302), at a Hausdorff distance of 0.86% (0.74% without): the sites the flanges take are
+        missing on the body (docs/known-gaps.md)."""
         shape = step_part("RLF_7030.stp")
         self.assertEqual(len(shape.Solids), 1)
         from LiftRemesh import meshing, parameters  # remesh_shape's own tessellation, for the report
         values = parameters.resolve({})
         source = meshing.tessellate(shape, values["linear_deflection"], values["angular_deflection"])
-        for vertices in (6000, 3000):
-            result = LiftRemesh.remesh_mesh(source, vertices=vertices)
+        for settings, hausdorff in (({"vertices": 6000}, 0.0075), ({"vertices": 3000, "local_sizing": True}, 0.01)):
+            result = LiftRemesh.remesh_mesh(source, **settings)
             points, triangles = mesh_checks.arrays(result.mesh)
             self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles), "not a closed oriented manifold")
-            self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2, vertices)
+            self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2, settings)
             a, b, c = (points[triangles[:, i]] for i in range(3))
             volume = float((a * mesh_checks.np.cross(b, c)).sum() / 6.0)
             self.assertAlmostEqual(volume / shape.Volume, 1.0, delta=0.02)
             self.assertEqual(result.report["output"]["self_intersections"], 0)
-            self.assertLessEqual(result.report["hausdorff_relative"], 0.01)
+            self.assertLessEqual(result.report["hausdorff_relative"], hausdorff)
             self.assertFalse(any("topology differs" in w for w in result.warnings), result.warnings)
-            self.assertGreater(result.report["size_refined_walls"], 0.2)
-        self.assertGreaterEqual(result.report["output"]["kappa_min"], 0.3)  # at 3000 vertices, issue 35's bar
+        self.assertGreater(result.report["size_refined_walls"], 0.2)
+        self.assertGreaterEqual(result.report["output"]["kappa_min"], 0.3)  # issue 35's bar
 
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""

@@ -46,8 +46,9 @@ struct RemeshParams {
     double feature_angle = 30.0;
     //! Local sizing (size_field.h): smaller edges where the part is thinner than the edge
     //! length or bends tightly, graded and bounded by the three below, through the CVT's density
-    //! (times rho^delta). Default true.
-    bool local_sizing = true;
+    //! (times rho^delta). Default false: with a vertex count the sites a thin part takes are
+    //! missing elsewhere, and at scale the wall search costs (docs/known-gaps.md).
+    bool local_sizing = false;
     //! Gradation g: neighbouring edges of the size field differ by at most this factor. Range
     //! [1, 3]. Default 1.3.
     double gradation = 1.3;

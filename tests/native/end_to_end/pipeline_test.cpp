@@ -280,9 +280,9 @@ TEST(Remesh, PlatesCloserThanTheEdgeLengthStayApart) {
 // 1 to 3), measured before sample_wall_thickness (thin_walls.h). With the triangles split where
 // their inside lies across the wall, the sheets keep their topology. (Along the diamond's free
 // rim over the square, where the wall ends within a few hundredths, 9 to 12 triangles still
-// reach down to the square's level, against 31 to 47 before.) Without local sizing, which
-// this test is not about: with it, the cells at the wall are a third as large, and one pair of
-// triangles crosses on seeds 1 and 2 (docs/known-gaps.md).
+// reach down to the square's level, against 31 to 47 before.) Without local sizing, whatever
+// the default, which this test is not about: with it, the cells at the wall are a third as
+// large, and one pair of triangles crosses on seeds 1 and 2 (docs/known-gaps.md).
 TEST(Remesh, SidesOfASlotWhoseVerticesAreNotAcrossStayApart) {
     for (unsigned seed : {1u, 2u, 3u}) {
         RemeshParams params = params_with(300, 5.0, seed);

@@ -290,3 +290,30 @@ TEST(WallSampling, AddsNoMoreThanMaxMidpoints) {
     p.max_midpoints = 0;
     EXPECT_TRUE(sample_wall_thickness(sheets, tree, p).midpoints.empty());
 }
+
+// The size field's splitting (WallSamplingParams::largest_size) without any lifting to ask for
+// it (reach 0): the sheets' triangles are split where the slot, 0.05 across, is thinner than the
+// size interpolated from their vertices (the largest, 0.4, none seeing the wall) by more than
+// kWallSizeSplit, and the square's vertices inside the overlap see the wall. Without a largest
+// size nothing is split.
+TEST(ThinWalls, TheSizeFieldSplitsWhereAWallIsThinnerThanTheInterpolatedSize) {
+    const double gap = 0.05;
+    const Mesh sheets = test::make_offset_sheets(gap);
+    const AabbTree tree(sheets);
+    WallSamplingParams params = sheet_sampling(0.4);
+    params.reach = 0.0;
+    EXPECT_TRUE(sample_wall_thickness(sheets, tree, params).midpoints.empty());
+    params.largest_size = 0.4;
+    const WallSampling s = sample_wall_thickness(sheets, tree, params);
+    ASSERT_FALSE(s.midpoints.empty());
+    const Points points = with_midpoints(sheets.points, s.midpoints);
+    long inside = 0;
+    for (Eigen::Index v = 0; v < points.rows(); ++v)
+        if (points(v, 2) == 0.0 && in_overlap(points(v, 0), points(v, 1), 1e-9)) {
+            EXPECT_NEAR(s.thickness[v], gap, 1e-12) << v;
+            ++inside;
+        }
+    EXPECT_GE(inside, 1);
+    params.largest_size = -1.0;
+    EXPECT_THROW(sample_wall_thickness(sheets, tree, params), InvalidInput);
+}

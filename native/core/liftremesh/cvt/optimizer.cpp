@@ -80,7 +80,6 @@ int on_iteration(void* instance, const lbfgsfloatval_t*, const lbfgsfloatval_t*,
     return 0;
 }
 
-// One phase: up to `iterations` L-BFGS iterations at a fixed sigma. Returns iterations done.
 // sqrt(m_k / mean m) for the cells' masses m_k (Problem::scale); an empty cell's, or one of
 // almost no mass, as if it had a hundredth of the mean.
 Eigen::VectorXd preconditioner(const LiftedSurface& surface, const LiftedPoints& sites, int threads, RvdCache* cache) {
@@ -92,6 +91,7 @@ Eigen::VectorXd preconditioner(const LiftedSurface& surface, const LiftedPoints&
     return scale;
 }
 
+// One phase: up to `iterations` L-BFGS iterations at a fixed sigma. Returns iterations done.
 int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
     lbfgs_parameter_t param;
     lbfgs_parameter_init(&param);
