@@ -147,6 +147,17 @@ WallSamplingParams sheet_sampling(double spacing) {
     return p;
 }
 
+// Every vertex of the split square inside the overlap (one at least) has the diamond `gap` away.
+void expect_the_square_sees_the_gap(const Points& points, const WallSampling& s, double gap) {
+    long inside = 0;
+    for (Eigen::Index v = 0; v < points.rows(); ++v)
+        if (points(v, 2) == 0.0 && in_overlap(points(v, 0), points(v, 1), 1e-9)) {
+            EXPECT_NEAR(s.thickness[v], gap, 1e-12) << v;
+            ++inside;
+        }
+    EXPECT_GE(inside, 1);
+}
+
 } // namespace
 
 // The slot's sides share no vertex across: per vertex there is no wall (the lifting misses it).
@@ -165,13 +176,7 @@ TEST(WallSampling, SplitsTrianglesWhereOnlyTheirInsideLiesAcrossAWall) {
     const Points points = with_midpoints(sheets.points, s.midpoints);
     ASSERT_EQ(s.thickness.size(), points.rows());
     ASSERT_EQ(s.parent.size(), static_cast<size_t>(s.triangles.rows()));
-    long inside = 0;
-    for (Eigen::Index v = 0; v < points.rows(); ++v)
-        if (points(v, 2) == 0.0 && in_overlap(points(v, 0), points(v, 1), 1e-9)) {
-            EXPECT_NEAR(s.thickness[v], gap, 1e-12) << v;
-            ++inside;
-        }
-    EXPECT_GE(inside, 1);
+    expect_the_square_sees_the_gap(points, s, gap);
 
     const double needed = wall_lifting(gap, params.nu, params.spacing);
     ASSERT_GT(needed, params.nu + params.tolerance);
@@ -307,13 +312,7 @@ TEST(ThinWalls, TheSizeFieldSplitsWhereAWallIsThinnerThanTheInterpolatedSize) {
     const WallSampling s = sample_wall_thickness(sheets, tree, params);
     ASSERT_FALSE(s.midpoints.empty());
     const Points points = with_midpoints(sheets.points, s.midpoints);
-    long inside = 0;
-    for (Eigen::Index v = 0; v < points.rows(); ++v)
-        if (points(v, 2) == 0.0 && in_overlap(points(v, 0), points(v, 1), 1e-9)) {
-            EXPECT_NEAR(s.thickness[v], gap, 1e-12) << v;
-            ++inside;
-        }
-    EXPECT_GE(inside, 1);
+    expect_the_square_sees_the_gap(points, s, gap);
     params.largest_size = -1.0;
     EXPECT_THROW(sample_wall_thickness(sheets, tree, params), InvalidInput);
 }
