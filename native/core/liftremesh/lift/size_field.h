@@ -9,8 +9,10 @@
 // defaults. The field asks for
 //   - h <= t where the part is t thick (the distance across to the far side of a wall or slot,
 //     thin_walls.h): two vertices across the wall's rim, and the cells of its two sides apart;
-//   - h <= theta_max R where the surface bends with radius R (R from the normals' turn of
-//     Eqs. 22-23): no edge turns the normal by more than theta_max; a small part has both;
+//   - h <= theta_max R where the surface bends with radius R (where both the input's facets,
+//     triangle_bend, and the eta-ball normals' turn of Eqs. 22-23 see it: the facets are not
+//     fooled by a crease, the eta normals not by a scan's noise): no edge turns the normal by
+//     more than theta_max; a small part has both;
 //   - h(x) <= h(y) + (g - 1) |x - y| for gradation g: neighbouring edges differ by a factor
 //     g at most (as Gmsh's and MMG's gradation);
 //   - smallest <= h <= largest.
