@@ -19,7 +19,8 @@ struct RemeshResult {
 //!     with its share of the sites, and a small closed piece that does not come out as the
 //!     surface it is, with triangles as good as its own, again with more sites or as it was;
 //!  2. vertex normals on geometric neighbourhoods of radius eta (5.2.1), densities (Eqs. 22-24),
-//!     lifting x + nu n (Eq. 12);
+//!     lifting x + nu n (Eq. 12); with local_sizing, a size per vertex from walls and bends
+//!     (size_field.h) in the weights, and with an edge length the vertex count it gives;
 //!  3. random sites, L-BFGS on the objective of Eq. 25 in two phases (6.2.2);
 //!  4. restricted Delaunay triangulation (Eq. 4) projected to R^3 (Algorithm 3, line 11);
 //!  5. a clean oriented manifold (repair.h), holes the input does not have filled (5.2.2);
