@@ -128,7 +128,7 @@ struct Piece {
     LiftedSurface surface;
     long sites = 0;
     // The local sizing (size_field.h), in unit-ball units: the vertices it asks for at the
-    // spacing, its smallest size and the areas it refined.
+    // spacing, its smallest size and the areas it refined (its sizes, once in the weights, dropped).
     double sized_count = 0.0;
     double size_smallest = 0.0;
     SizeField size_areas;
@@ -222,11 +222,10 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
         const double share = static_cast<double>(sites_wanted) * surface_area(unit) / total_area;
         const double scale = lengths || !(share > 0.0) ? 1.0 : std::sqrt(piece.sized_count / share);
         local_spacing = scale * piece.size_areas.size;
+        piece.size_areas.size = Eigen::VectorXd(); // in the weights now: only the areas are reported
     }
-    Eigen::VectorXd lifting = Eigen::VectorXd::Constant(thickness.size(), params.nu);
-    if (thin_walls)
-        for (Eigen::Index v = 0; v < lifting.size(); ++v)
-            lifting[v] = wall_lifting(thickness[v], params.nu, std::min(spacing, local_spacing[v]));
+    const Eigen::VectorXd lifting = thin_walls ? thin_wall_lifting(thickness, params.nu, local_spacing.cwiseMin(spacing))
+                                               : Eigen::VectorXd::Constant(thickness.size(), params.nu);
     const Points mesh_normals = was_split ? with_midpoints(normals, sampled.midpoints) : Points();
     const Points& surface_normals = was_split ? mesh_normals : normals;
     piece.surface = make_lifted_surface(params.nu > 0.0 ? lift(mesh.points, surface_normals, lifting) : LiftedPoints(mesh.points),

@@ -22,17 +22,18 @@ struct Schedule {
 };
 Schedule two_phase_schedule(int iterations);
 
+//! Weights varying by more than this factor over the surface make optimize_sites precondition
+//! the sites by their cells' masses (optimizer.cpp).
+constexpr double kPreconditionContrast = 16.0;
+
 //! Moves `sites` (#S by d) to a local minimum of the objective (Eq. 25) by L-BFGS, Algorithm 3
 //! lines 6-9. With sigma == 1 the whole budget is one phase. `progress` (may be empty) is called
 //! after each iteration; returning false throws Cancelled. A line search that fails (the
 //! objective is only C^2 almost everywhere, Section 3.2.3) ends the phase at the best point.
 //! `cache` (may be null) is the diagram's RvdCache the evaluations use: given, it is left with
 //! the lists and seeds of the last diagram, which the restricted Delaunay triangulation of the
-//! result can start from.
-//! Weights varying by more than this factor over the surface make optimize_sites precondition
-//! the sites by their cells' masses (optimizer.cpp).
-constexpr double kPreconditionContrast = 16.0;
-
+//! result can start from. Where the weights vary by more than kPreconditionContrast, the
+//! sites are preconditioned by their cells' masses (optimizer.cpp).
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
                               int threads, const ProgressCallback& progress = {}, RvdCache* cache = nullptr);
 

@@ -264,8 +264,12 @@ double wall_lifting(double t, double nu, double spacing) {
 }
 
 Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, double spacing) {
+    return thin_wall_lifting(thickness, nu, Eigen::VectorXd::Constant(thickness.size(), spacing));
+}
+
+Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, const Eigen::VectorXd& spacing) {
     Eigen::VectorXd scale(thickness.size());
-    for (Eigen::Index v = 0; v < thickness.size(); ++v) scale[v] = wall_lifting(thickness[v], nu, spacing);
+    for (Eigen::Index v = 0; v < thickness.size(); ++v) scale[v] = wall_lifting(thickness[v], nu, spacing[v]);
     return scale;
 }
 

@@ -104,4 +104,8 @@ double wall_lifting(double t, double nu, double spacing);
 //! spacing > 0.
 Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, double spacing);
 
+//! The same with a spacing per vertex (the size field's, size_field.h): the sides of a wall
+//! need to lie only as far apart as the cells beside it are large.
+Eigen::VectorXd thin_wall_lifting(const Eigen::VectorXd& thickness, double nu, const Eigen::VectorXd& spacing);
+
 } // namespace liftremesh
