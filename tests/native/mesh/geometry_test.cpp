@@ -8,9 +8,52 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <random>
 #include <vector>
 
 using namespace liftremesh;
+
+namespace {
+
+// Area of triangle (a, b, c) inside the ball of radius r about p, computed the independent way:
+// in the triangle's plane, the signed areas of the disk within the wedges (centre, edge), one per
+// edge, each a sector and a triangle or two (up to two atan2 an edge), as the library did
+// before. A reference for triangle_ball_intersection_area, which integrates round the boundary
+// instead; but not where p's foot lies on a corner or on an edge's line between its ends, as at
+// a T-junction: a wedge's angle is then the atan2 of rounding errors (an exact zero vector, or
+// exactly opposite ones, aside).
+double wedge_sum_ball_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
+                                  const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    Eigen::Vector3d u1 = b - a, u2 = c - a;
+    if (!(u1.norm() > 0.0)) return 0.0;
+    u1.normalize();
+    u2 -= u1 * u1.dot(u2);
+    if (!(u2.norm() > 1e-14 * (b - a).norm())) return 0.0;
+    u2.normalize();
+    const double dist = u1.cross(u2).dot(p - a), rho2 = r * r - dist * dist;
+    if (rho2 <= 0.0) return 0.0;
+    auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+    auto sector = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+        return 0.5 * rho2 * std::atan2(cross(u, v), u.dot(v));
+    };
+    auto wedge = [&](const Eigen::Vector2d& s, const Eigen::Vector2d& t) { // disk within (0, s, t)
+        if (s.squaredNorm() <= rho2 && t.squaredNorm() <= rho2) return 0.5 * cross(s, t);
+        const Eigen::Vector2d d = t - s;
+        const double qa = d.squaredNorm();
+        if (!(qa > 0.0)) return 0.0;
+        const double qb = s.dot(d), qc = s.squaredNorm() - rho2, disc = qb * qb - qa * qc;
+        if (disc <= 0.0) return sector(s, t);
+        const double t1 = (-qb - std::sqrt(disc)) / qa, t2 = (-qb + std::sqrt(disc)) / qa;
+        if (t2 <= 0.0 || t1 >= 1.0) return sector(s, t);
+        const Eigen::Vector2d p1 = s + d * std::max(t1, 0.0), p2 = s + d * std::min(t2, 1.0);
+        return sector(s, p1) + 0.5 * cross(p1, p2) + sector(p2, t);
+    };
+    auto planar = [&](const Eigen::Vector3d& x) { return Eigen::Vector2d((x - p).dot(u1), (x - p).dot(u2)); };
+    const Eigen::Vector2d A = planar(a), B = planar(b), C = planar(c);
+    return std::abs(wedge(A, B) + wedge(B, C) + wedge(C, A));
+}
+
+} // namespace
 
 TEST(Geometry, KappaIsOneForEquilateralAndZeroForDegenerate) {
     const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
@@ -41,22 +84,75 @@ TEST(Geometry, BallIntersectionAreaMatchesLimits) {
     EXPECT_EQ(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, 5), 1.0, a, b, c), 0.0);
 }
 
-TEST(Geometry, PlaneFrameIsOrthonormalInTheTrianglesPlaneAndZeroWithoutArea) {
+TEST(Geometry, BallIntersectionAreaIsZeroWithoutArea) {
     const Eigen::Vector3d a(1, 2, 3), b(4, 2, 7), c(0, 5, 3);
-    const PlaneFrame f = plane_frame(a, b, c);
-    EXPECT_NEAR(f.u1.norm(), 1.0, 1e-15);
-    EXPECT_NEAR(f.u2.norm(), 1.0, 1e-15);
-    EXPECT_NEAR(f.u1.dot(f.u2), 0.0, 1e-15);
-    EXPECT_NEAR(f.u1.cross(b - a).norm(), 0.0, 1e-14);                // u1 along b - a
-    EXPECT_GT(f.u2.dot(c - a), 0.0);                                   // u2 towards c
-    EXPECT_NEAR(f.u1.cross(f.u2).dot((b - a).cross(c - a).normalized()), 1.0, 1e-15); // in its plane
-    // Collinear corners and a repeated corner: no frame, and no area in any ball.
+    // Collinear corners and a repeated corner: no area in any ball.
     using Corners = std::array<Eigen::Vector3d, 3>;
-    for (const auto& [p, q, r] : {Corners{a, b, a + 2.0 * (b - a)}, Corners{a, a, c}}) {
-        const PlaneFrame none = plane_frame(p, q, r);
-        EXPECT_TRUE(none.u1.isZero(0.0) && none.u2.isZero(0.0));
+    for (const auto& [p, q, r] : {Corners{a, b, a + 2.0 * (b - a)}, Corners{a, a, c}})
         EXPECT_EQ(triangle_ball_intersection_area(p, 10.0, p, q, r), 0.0);
+    // Given a normal facing the other way, or none: no area either.
+    EXPECT_EQ(triangle_ball_intersection_area(a, 10.0, a, b, c, -triangle_normal(a, b, c)), 0.0);
+    EXPECT_EQ(triangle_ball_intersection_area(a, 10.0, a, b, c, Eigen::Vector3d::Zero()), 0.0);
+}
+
+// The boundary integral against the sum of signed wedges (wedge_sum_ball_area), on balls
+// placed where the two are most likely to part: the sphere through a corner, grazing an edge
+// from either side, centred on an edge or a corner, as well as anywhere. (Centred off the plane
+// right over a corner, the wedges go wrong: the next test has those cases.)
+TEST(Geometry, BallIntersectionAreaAgreesWithWedgeSums) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    auto random_point = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)); };
+    double worst = 0.0;
+    long cases = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const Eigen::Vector3d a = random_point(), b = random_point(), c = random_point();
+        const Eigen::Vector3d n = triangle_normal(a, b, c);
+        const double area = triangle_area(a, b, c);
+        if (!(area > 1e-3)) continue;
+        const Eigen::Vector3d corners[3] = {a, b, c};
+        const int i = trial % 3;
+        const Eigen::Vector3d& s = corners[i];
+        const Eigen::Vector3d& t = corners[(i + 1) % 3];
+        const Eigen::Vector3d mid = 0.5 * (s + t), centroid = (a + b + c) / 3.0;
+        const Eigen::Vector3d inward = n.cross(t - s).normalized(); // in the plane, into the triangle
+        const double lift = 0.3 * unit(rng), r = 0.05 + std::abs(unit(rng));
+        const double rho = std::sqrt(std::max(r * r - lift * lift, 0.0));
+        std::vector<Eigen::Vector3d> centres = {
+            centroid + random_point(),
+            mid + lift * n,                                          // centred on an edge
+            s,                                                       // on a corner
+            s + random_point().normalized() * r,                     // the sphere through a corner
+            mid + inward * rho + lift * n,                           // grazing an edge from inside
+            mid - inward * rho + lift * n,                           // and from outside
+            mid + inward * (rho * (1.0 + 1e-12)) + lift * n,         // just clear of it
+            mid - inward * (rho * (1.0 - 1e-12)) + lift * n,         // just over it
+        };
+        for (const Eigen::Vector3d& o : centres) {
+            const double fast = triangle_ball_intersection_area(o, r, a, b, c);
+            const double plain = wedge_sum_ball_area(o, r, a, b, c);
+            worst = std::max(worst, std::abs(fast - plain) / std::max(area, M_PI * r * r));
+            ++cases;
+        }
     }
+    EXPECT_GT(cases, 10000);
+    EXPECT_LT(worst, 1e-12) << "largest difference, relative to the larger of triangle and disk";
+}
+
+// The disk wholly inside the triangle, the triangle wholly inside the ball, and a disk round a
+// corner of the triangle, a quarter of it inside a right angle, from a ball centred off the
+// plane over that corner, and half a disk about a point of an edge, as at a T-junction: in both
+// the wedge sums took the angle of a vector of rounding errors.
+TEST(Geometry, BallIntersectionAreaOfTheWholeDiskAndTheWholeTriangle) {
+    const Eigen::Vector3d a(0, 0, 0), b(4, 0, 0), c(0, 4, 0);
+    const Eigen::Vector3d s(0.1, 0.3, 0.7), t(1.9, -0.4, 0.2), u(0.4, 2.5, -0.3);
+    for (const double along : {0.37, 0.5, 0.61}) {
+        const Eigen::Vector3d on_edge = s + along * (t - s); // off the line by rounding
+        EXPECT_NEAR(triangle_ball_intersection_area(on_edge, 0.2, s, t, u), M_PI * 0.02, 1e-14) << along;
+    }
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(1, 1, 0.5), 0.9, a, b, c), M_PI * (0.81 - 0.25), 1e-14);
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(1, 1, 0), 6.0, a, b, c), 8.0, 1e-14);
+    EXPECT_NEAR(triangle_ball_intersection_area(Eigen::Vector3d(0, 0, -0.6), 1.0, a, b, c), M_PI * 0.64 / 4, 1e-14);
 }
 
 TEST(Geometry, ClosestPointOnTriangleRegions) {

@@ -9,11 +9,9 @@ namespace liftremesh {
 
 Points vertex_normals(const Mesh& mesh, double eta) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
-    std::vector<PlaneFrame> frame(nf); // a triangle on the rim of many balls is clipped by each
     Points ring = Points::Zero(nv, 3); // one-ring, area-weighted: the fallback and the side test
     for (Eigen::Index f = 0; f < nf; ++f) {
         const auto a = corner(mesh, f, 0), b = corner(mesh, f, 1), c = corner(mesh, f, 2);
-        frame[f] = plane_frame(a, b, c);
         const Eigen::Vector3d weighted = triangle_area(a, b, c) * triangle_normal(a, b, c);
         for (int j = 0; j < 3; ++j) ring.row(mesh.triangles(f, j)) += weighted.transpose();
     }
@@ -34,10 +32,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
         const Eigen::Vector3d own = ring.row(v).transpose().normalized();
         // Triangles turned more than 120 degrees from the vertex's own normal are the far side of
         // a thin wall: left out.
-        const Eigen::Vector3d sum = tree.area_weighted_normal_in_ball(x, eta, {own, -0.5}, [&](int32_t f) {
-            return triangle_ball_intersection_area(x, eta, corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2),
-                                                   frame[f]);
-        });
+        const Eigen::Vector3d sum = tree.area_weighted_normal_in_ball(x, eta, {own, -0.5});
         const double len = sum.norm();
         normals.row(v) = (len > 0.0 ? Eigen::Vector3d(sum / len) : own).transpose();
     }

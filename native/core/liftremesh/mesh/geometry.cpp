@@ -77,64 +77,96 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 
 namespace {
 
-// Signed area of (disk of radius r at the origin) intersected with the triangle (0, a, b).
-double disk_wedge_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double r) {
-    auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-    auto sector = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-        return 0.5 * r * r * std::atan2(cross(u, v), u.dot(v));
-    };
-    const double r2 = r * r;
-    if (a.squaredNorm() <= r2 && b.squaredNorm() <= r2) return 0.5 * cross(a, b);
-    const Eigen::Vector2d d = b - a;
-    const double qa = d.squaredNorm();
-    if (!(qa > 0.0)) return 0.0;
-    const double qb = a.dot(d), qc = a.squaredNorm() - r2;
-    const double disc = qb * qb - qa * qc;
-    if (disc <= 0.0) return sector(a, b);
-    const double s = std::sqrt(disc);
-    const double t1 = (-qb - s) / qa, t2 = (-qb + s) / qa;
-    if (t2 <= 0.0 || t1 >= 1.0) return sector(a, b);
-    const Eigen::Vector2d p1 = a + d * std::max(t1, 0.0);
-    const Eigen::Vector2d p2 = a + d * std::min(t2, 1.0);
-    return sector(a, p1) + 0.5 * cross(p1, p2) + sector(p2, b);
+// Whether o + x lies inside the triangle o + p[0..2] of unit normal n (x and p taken from o):
+// on the inner side of its three edges.
+bool in_triangle(const Eigen::Vector3d p[3], const Eigen::Vector3d& n, const Eigen::Vector3d& x) {
+    for (int i = 0; i < 3; ++i)
+        if (!(n.dot((p[i == 2 ? 0 : i + 1] - p[i]).cross(x - p[i])) > 0.0)) return false;
+    return true;
 }
 
 } // namespace
 
-PlaneFrame plane_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const PlaneFrame none{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-    Eigen::Vector3d u1 = b - a;
-    const double l1 = u1.norm();
-    if (!(l1 > 0.0)) return none;
-    u1 /= l1;
-    Eigen::Vector3d u2 = (c - a) - u1 * u1.dot(c - a);
-    const double l2 = u2.norm();
-    if (!(l2 > 1e-14 * l1)) return none;
-    u2 /= l2;
-    return {u1, u2};
-}
-
-double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
+double triangle_ball_intersection_area(const Eigen::Vector3d& o, double r, const Eigen::Vector3d& a,
                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    return triangle_ball_intersection_area(p, r, a, b, c, plane_frame(a, b, c));
+    return triangle_ball_intersection_area(o, r, a, b, c, triangle_normal(a, b, c));
 }
 
-double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, const PlaneFrame& frame) {
-    const Eigen::Vector3d &u1 = frame.u1, &u2 = frame.u2;
-    if (u1.isZero(0.0)) return 0.0; // no area
-    const Eigen::Vector3d n = u1.cross(u2);
-    const double dist = n.dot(p - a);
-    const double rho2 = r * r - dist * dist;
-    if (rho2 <= 0.0) return 0.0;
-    const double rho = std::sqrt(rho2);
-    auto to2d = [&](const Eigen::Vector3d& x) {
-        const Eigen::Vector3d q = x - p;
-        return Eigen::Vector2d(q.dot(u1), q.dot(u2));
-    };
-    const Eigen::Vector2d A = to2d(a), B = to2d(b), C = to2d(c);
-    const double area = disk_wedge_area(A, B, rho) + disk_wedge_area(B, C, rho) + disk_wedge_area(C, A, rho);
-    return std::abs(area);
+// The ball meets the triangle's plane in a disk of radius rho about o's foot o' = o + h n. The
+// area of triangle and disk is half the integral of n . (x - o') x dx round their common
+// boundary (Green): the parts of the edges inside the ball, each giving n . (x cross y) for its ends x
+// and y, and the arcs of the circle from where that boundary leaves it to where it comes back,
+// each giving rho^2 times its angle. Taken from o rather than o', points of the plane give the
+// same n . (x cross y), and x . y less h^2. One atan2 per arc, where a sum of signed wedges over the
+// three edges takes up to six.
+double triangle_ball_intersection_area(const Eigen::Vector3d& o, double r, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
+    const Eigen::Vector3d p[3] = {a - o, b - o, c - o};
+    const double whole2 = n.dot((p[1] - p[0]).cross(p[2] - p[0])); // twice the triangle's area
+    if (!(whole2 > 0.0)) return 0.0; // no area, or no normal
+    const double h = n.dot(p[0]), r2 = r * r, rho2 = r2 - h * h;
+    if (!(rho2 > 0.0)) return 0.0; // the ball misses the plane
+    bool in[3];
+    for (int i = 0; i < 3; ++i) in[i] = p[i].squaredNorm() <= r2;
+    if (in[0] && in[1] && in[2]) return 0.5 * whole2;
+    // The parts of the edges inside the ball, in the triangle's order: from `from` to `to`, which
+    // are corners when `from_corner` / `to_corner`, else points on the circle.
+    struct Part {
+        Eigen::Vector3d from, to;
+        bool from_corner, to_corner;
+        int edge; // from corner `edge` to the next
+    } parts[3];
+    int count = 0;
+    for (int i = 0; i < 3; ++i) {
+        const int j = i == 2 ? 0 : i + 1;
+        const Eigen::Vector3d d = p[j] - p[i];
+        const double qa = d.squaredNorm(), qb = p[i].dot(d), qc = p[i].squaredNorm() - r2;
+        Part& part = parts[count];
+        part.edge = i;
+        part.from_corner = in[i];
+        part.to_corner = in[j];
+        if (in[i] && in[j]) {
+            part.from = p[i];
+            part.to = p[j];
+            ++count;
+            continue;
+        }
+        // |p_i + t d|^2 = r^2 at t = (-qb -+ s) / qa: the edge enters the ball at the first root
+        // and leaves it at the second. A corner inside puts the roots on either side of it.
+        const double disc = qb * qb - qa * qc;
+        if (!(qa > 0.0) || (!in[i] && !in[j] && !(disc > 0.0))) continue;
+        const double s = std::sqrt(std::max(disc, 0.0));
+        const double t_in = in[i] ? 0.0 : std::clamp((-qb - s) / qa, 0.0, 1.0);
+        const double t_out = in[j] ? 1.0 : std::clamp((-qb + s) / qa, 0.0, 1.0);
+        if (!in[i] && !in[j] && !(t_in < t_out)) continue; // the line meets the ball off the edge
+        part.from = in[i] ? p[i] : Eigen::Vector3d(p[i] + t_in * d);
+        part.to = in[j] ? p[j] : Eigen::Vector3d(p[i] + t_out * d);
+        ++count;
+    }
+    const Eigen::Vector3d foot = h * n; // o', taken from o
+    if (count == 0) // no edge meets the ball: the disk lies inside the triangle, or apart from it
+        return in_triangle(p, n, foot) ? M_PI * rho2 : 0.0;
+    double twice = 0.0;
+    for (int k = 0; k < count; ++k) {
+        const Part& part = parts[k];
+        twice += n.dot(part.from.cross(part.to));
+        if (part.to_corner) continue;
+        // The arc from where this part leaves the ball, counter-clockwise, to where the next one
+        // enters it: an angle in [0, 2 pi), of which atan2 gives the sine and cosine.
+        const Part& next = parts[k + 1 == count ? 0 : k + 1];
+        const Eigen::Vector3d &x = part.to, &y = next.from;
+        double angle = std::atan2(n.dot(x.cross(y)), x.dot(y) - h * h);
+        // Leaving and coming back at nearly one point, the arc is nearly nothing or nearly the
+        // whole circle, which rounding alone may decide. Near the corner between two edges it is
+        // nothing: a circle through a corner has points outside its angle (less than pi) on both
+        // sides of it. On one edge, it goes round if the disk's centre is inside the triangle (the
+        // disk is then all inside but a sliver), and not if it is outside (a sliver is inside).
+        const bool round =
+            std::abs(angle) < 1e-7 ? next.edge == part.edge && in_triangle(p, n, foot) : angle < 0.0;
+        if (round) angle += 2.0 * M_PI;
+        twice += rho2 * std::max(angle, 0.0);
+    }
+    return std::clamp(0.5 * twice, 0.0, 0.5 * whole2);
 }
 
 namespace {

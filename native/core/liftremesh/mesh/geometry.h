@@ -69,22 +69,16 @@ Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-//! The orthonormal frame of triangle (a, b, c)'s plane that triangle_ball_intersection_area
-//! works in: u1 along b - a, u2 across it towards c. Both zero for a triangle of no area.
-struct PlaneFrame {
-    Eigen::Vector3d u1, u2;
-};
-PlaneFrame plane_frame(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
-
 //! Area of the intersection of triangle (a, b, c) with the ball of radius r centred at p,
 //! i.e. of the triangle with the disk cut by the ball in the triangle's plane (Section 5.2.1).
+//! Zero for a triangle of no area.
 double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
-//! The same, given the triangle's plane_frame(a, b, c): the same result to the bit, for a
-//! caller that meets each triangle in many balls.
+//! The same, given the triangle's unit normal n = triangle_normal(a, b, c), for a caller that
+//! meets each triangle in many balls.
 double triangle_ball_intersection_area(const Eigen::Vector3d& p, double r, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, const PlaneFrame& frame);
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& n);
 
 //! Indices 0..n-1 sorted along a Morton (Z-order) curve of n points, the point i being
 //! xyz[i * stride + 0..2]: points near in space come near in the order (cache locality).

@@ -169,9 +169,9 @@ struct AabbTree::Impl {
     //! only the thin-wall search does (bound_normals).
     std::vector<NormalBox> normal_boxes;
     std::once_flag normals_bounded;
-    //! Per triangle in tree order, its area times its unit normal; per node, the sum of these
-    //! over its triangles. Made by the first ball sum (sum_normals).
-    std::vector<Eigen::Vector3d> weighted_normals, node_normal_sums;
+    //! Per triangle in tree order, its unit normal and its area times it; per node, the sum of
+    //! the latter over its triangles. Made by the first ball sum (sum_normals).
+    std::vector<Eigen::Vector3d> ordered_normals, weighted_normals, node_normal_sums;
     std::once_flag normals_summed;
 
     const std::vector<NormalBox>& bound_normals();
@@ -181,10 +181,12 @@ struct AabbTree::Impl {
 void AabbTree::Impl::sum_normals() {
     std::call_once(normals_summed, [this] {
         const auto nt = static_cast<int32_t>(ids.size());
+        ordered_normals.resize(ids.size());
         weighted_normals.resize(ids.size());
 #pragma omp parallel for schedule(static) if (nt >= kParallelSize)
         for (int32_t t = 0; t < nt; ++t) {
             const Eigen::Vector3d* c = &corners[3 * static_cast<size_t>(t)];
+            ordered_normals[t] = normals[ids[t]];
             weighted_normals[t] = triangle_area(c[0], c[1], c[2]) * normals[ids[t]];
         }
         node_normal_sums.assign(nodes.size(), Eigen::Vector3d::Zero());
@@ -385,8 +387,8 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     }
 }
 
-Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing,
-                                                      const std::function<double(int32_t)>& clipped_area) const {
+Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r,
+                                                      const FacingWith& facing) const {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     const auto& nodes = impl_->nodes;
     if (nodes.empty() || !(r > 0.0)) return sum;
@@ -422,7 +424,7 @@ Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q,
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
                 if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
-                const Eigen::Vector3d& n = impl_->normals[impl_->ids[t]];
+                const Eigen::Vector3d& n = impl_->ordered_normals[t];
                 if (n.dot(facing.direction) < facing.min_dot) continue;
                 // The ball is convex: a triangle whose corners are inside is wholly inside.
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
@@ -431,8 +433,8 @@ Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q,
                     sum += impl_->weighted_normals[t];
                     continue;
                 }
-                if ((closest_point_on_triangle(q, c[0], c[1], c[2]) - q).squaredNorm() < r2)
-                    sum += clipped_area(impl_->ids[t]) * n;
+                // Zero for a triangle the ball misses.
+                sum += triangle_ball_intersection_area(q, r, c[0], c[1], c[2], n) * n;
             }
             continue;
         }

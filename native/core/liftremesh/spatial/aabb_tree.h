@@ -71,11 +71,10 @@ public:
     //! The sum, over the triangles t strictly nearer to q than r that face as `facing` asks, of
     //! w_t n_t: n_t the unit normal, w_t the area of t inside the ball of radius r about q.
     //! A triangle wholly inside the ball weighs its whole area, and a subtree wholly inside whose
-    //! normals all face so adds a sum kept per node: only the triangles crossing the sphere cost
-    //! a call to `clipped_area(t)`, which gives their w_t. The terms are added in the tree's
-    //! order, the same on any number of threads. Thread-safe if `clipped_area` is.
-    Eigen::Vector3d area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing,
-                                                 const std::function<double(int32_t)>& clipped_area) const;
+    //! normals all face so adds a sum kept per node: only the triangles crossing the sphere are
+    //! clipped to it (triangle_ball_intersection_area). The terms are added in the tree's order,
+    //! the same on any number of threads. Thread-safe (const).
+    Eigen::Vector3d area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing) const;
 
     //! Appends to `out` the triangles whose bounding boxes meet the closed box [lo, hi], in the
     //! order the tree holds them. Thread-safe (const).
