@@ -1,11 +1,63 @@
 #include "liftremesh/lift/normals.h"
 
+#include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/spatial/aabb_tree.h"
 
+#include <algorithm>
 #include <cmath>
+#include <unordered_set>
+#include <vector>
 
 namespace liftremesh {
+
+namespace {
+// Triangles turned more than 120 degrees from the side averaged: the far side of a thin wall.
+constexpr double kFacingMinDot = -0.5;
+// How much more of a ball the triangles turned away from a vertex must fill for the vertex to
+// be on a folded flap rather than on one side of a wall.
+constexpr double kFoldedFlapRatio = 3.0;
+// The most triangles a flap's search walks before it calls the side no flap.
+constexpr size_t kMaxFlapTriangles = 4096;
+
+// Whether vertex v lies on a flap folded back onto the surface: the triangles facing its own
+// normal `own` (within 120 degrees) that it reaches across edges inside the ball of radius eta
+// about it include an edge where the surface turns back, by more than 120 degrees. A wall's side
+// meets its other side only across its rim, turning by less at each edge.
+bool on_folded_flap(const Mesh& mesh, const CompressedRows& around, Eigen::Index v, const Eigen::Vector3d& own,
+                    double eta) {
+    const Eigen::Vector3d x = mesh.points.row(v).transpose();
+    auto normal = [&](int32_t f) { return triangle_normal(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
+    auto in_ball = [&](int32_t f) {
+        return (closest_point_on_triangle(x, corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)) - x).norm() < eta;
+    };
+    std::unordered_set<int32_t> seen;
+    std::vector<int32_t> queue;
+    for (const int32_t* f = around.begin(v); f != around.end(v); ++f)
+        if (normal(*f).dot(own) >= kFacingMinDot) {
+            queue.push_back(*f);
+            seen.insert(*f);
+        }
+    while (!queue.empty() && seen.size() < kMaxFlapTriangles) {
+        const int32_t f = queue.back();
+        queue.pop_back();
+        const Eigen::Vector3d nf = normal(f);
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = mesh.triangles(f, j), b = mesh.triangles(f, j == 2 ? 0 : j + 1);
+            for (const int32_t* g = around.begin(a); g != around.end(a); ++g) {
+                if (*g == f || !std::binary_search(around.begin(b), around.end(b), *g)) continue; // not across (a, b)
+                const Eigen::Vector3d ng = normal(*g);
+                if (nf.dot(ng) < kFacingMinDot) return true; // the surface folds back here
+                if (ng.dot(own) >= kFacingMinDot && !seen.count(*g) && in_ball(*g)) {
+                    seen.insert(*g);
+                    queue.push_back(*g);
+                }
+            }
+        }
+    }
+    return false;
+}
+} // namespace
 
 Points vertex_normals(const Mesh& mesh, double eta) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
@@ -25,16 +77,37 @@ Points vertex_normals(const Mesh& mesh, double eta) {
     // Vertices in Morton order: consecutive balls meet the same nodes, still in the cache.
     const std::vector<long> order = morton_order(mesh.points.data(), nv, 3);
     Points normals(nv, 3);
+    std::vector<Eigen::Index> flap_candidates;
 #pragma omp parallel for schedule(dynamic, 256)
     for (Eigen::Index i = 0; i < nv; ++i) {
         const Eigen::Index v = order[i];
         const Eigen::Vector3d x = mesh.points.row(v).transpose();
         const Eigen::Vector3d own = ring.row(v).transpose().normalized();
-        // Triangles turned more than 120 degrees from the vertex's own normal are the far side of
-        // a thin wall: left out.
-        const Eigen::Vector3d sum = tree.area_weighted_normal_in_ball(x, eta, {own, -0.5});
-        const double len = sum.norm();
-        normals.row(v) = (len > 0.0 ? Eigen::Vector3d(sum / len) : own).transpose();
+        // The far side of a thin wall left out, as seen from the vertex's own normal.
+        const AabbTree::BallNormalSums sums = tree.area_weighted_normals_in_ball(x, eta, {own, kFacingMinDot});
+        // Unless it holds most of the ball: the vertex may be on a flap (below).
+        if (sums.against.norm() > kFoldedFlapRatio * sums.facing.norm()) {
+#pragma omp critical(folded_flaps)
+            flap_candidates.push_back(v);
+        }
+        const double len = sums.facing.norm();
+        normals.row(v) = (len > 0.0 ? Eigen::Vector3d(sums.facing / len) : own).transpose();
+    }
+    // A vertex on a flap folded back onto the surface (a pleat, as hole fillers and scans leave)
+    // takes the normal of the surface round it, the side that fills its ball: else the lifting
+    // (Eq. 12) would set the flap apart from the surface, an island of sites of its own. Few
+    // vertices, if any: the edges' triangles are listed for them alone.
+    if (!flap_candidates.empty()) {
+        std::sort(flap_candidates.begin(), flap_candidates.end());
+        const CompressedRows around = vertex_triangles(mesh);
+        for (const Eigen::Index v : flap_candidates) {
+            const Eigen::Vector3d x = mesh.points.row(v).transpose();
+            const Eigen::Vector3d own = ring.row(v).transpose().normalized();
+            if (!on_folded_flap(mesh, around, v, own, eta)) continue;
+            const Eigen::Vector3d surface = tree.area_weighted_normals_in_ball(x, eta, {own, kFacingMinDot}).against;
+            const Eigen::Vector3d sum = tree.area_weighted_normals_in_ball(x, eta, {surface.normalized(), kFacingMinDot}).facing;
+            if (sum.norm() > 0.0) normals.row(v) = sum.normalized().transpose();
+        }
     }
     return normals;
 }

@@ -387,11 +387,11 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     }
 }
 
-Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r,
-                                                      const FacingWith& facing) const {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+AabbTree::BallNormalSums AabbTree::area_weighted_normals_in_ball(const Eigen::Vector3d& q, double r,
+                                                                const FacingWith& facing) const {
+    BallNormalSums sums{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     const auto& nodes = impl_->nodes;
-    if (nodes.empty() || !(r > 0.0)) return sum;
+    if (nodes.empty() || !(r > 0.0)) return sums;
     const NormalBox* normal_boxes = impl_->bound_normals().data();
     impl_->sum_normals();
     const double r2 = r * r;
@@ -415,17 +415,19 @@ Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q,
         const int32_t index = stack[--top];
         const Node& node = nodes[index];
         if (!(box_squared_distance(node.box, q) < r2)) continue;
-        const auto [least, most] = facing_range(normal_boxes[index]);
-        if (most < facing.min_dot) continue; // none of its triangles faces so
-        if (least >= facing.min_dot && box_farthest_squared_distance(node.box, q) < inside_d2) {
-            sum += impl_->node_normal_sums[index]; // all of it in the ball, all facing so
-            continue;
+        if (box_farthest_squared_distance(node.box, q) < inside_d2) {
+            // All of it in the ball: its sum goes whole to one side if all its normals do.
+            const auto [least, most] = facing_range(normal_boxes[index]);
+            if (least >= facing.min_dot || most < facing.min_dot) {
+                (least >= facing.min_dot ? sums.facing : sums.against) += impl_->node_normal_sums[index];
+                continue;
+            }
         }
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
                 if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
                 const Eigen::Vector3d& n = impl_->ordered_normals[t];
-                if (n.dot(facing.direction) < facing.min_dot) continue;
+                Eigen::Vector3d& sum = n.dot(facing.direction) >= facing.min_dot ? sums.facing : sums.against;
                 // The ball is convex: a triangle whose corners are inside is wholly inside.
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 if ((c[0] - q).squaredNorm() < inside_d2 && (c[1] - q).squaredNorm() < inside_d2 &&
@@ -442,7 +444,7 @@ Eigen::Vector3d AabbTree::area_weighted_normal_in_ball(const Eigen::Vector3d& q,
         stack[top++] = node.first + 1;
         stack[top++] = node.first;
     }
-    return sum;
+    return sums;
 }
 
 void AabbTree::triangles_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,

@@ -68,13 +68,18 @@ public:
         double min_dot;
     };
 
-    //! The sum, over the triangles t strictly nearer to q than r that face as `facing` asks, of
-    //! w_t n_t: n_t the unit normal, w_t the area of t inside the ball of radius r about q.
-    //! A triangle wholly inside the ball weighs its whole area, and a subtree wholly inside whose
-    //! normals all face so adds a sum kept per node: only the triangles crossing the sphere are
-    //! clipped to it (triangle_ball_intersection_area). The terms are added in the tree's order,
-    //! the same on any number of threads. Thread-safe (const).
-    Eigen::Vector3d area_weighted_normal_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing) const;
+    //! Sums over the triangles t strictly nearer to q than r of w_t n_t: n_t the unit normal,
+    //! w_t the area of t inside the ball of radius r about q. `facing` sums those that face as
+    //! `facing` asks, `against` the others.
+    struct BallNormalSums {
+        Eigen::Vector3d facing, against;
+    };
+
+    //! Both sums. A triangle wholly inside the ball weighs its whole area, and a subtree wholly
+    //! inside whose normals all fall on one side adds a sum kept per node: only the triangles
+    //! crossing the sphere are clipped to it (triangle_ball_intersection_area). The terms are
+    //! added in the tree's order, the same on any number of threads. Thread-safe (const).
+    BallNormalSums area_weighted_normals_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing) const;
 
     //! Appends to `out` the triangles whose bounding boxes meet the closed box [lo, hi], in the
     //! order the tree holds them. Thread-safe (const).
