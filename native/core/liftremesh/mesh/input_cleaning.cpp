@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -26,25 +25,37 @@ Tri rotated(Tri t) {
 // Step 3: drops the repeats of each facet and returns the pairs (first, first other way round)
 // of the facets listed in both windings, for the sheet test.
 long drop_repeats(const std::vector<Tri>& tris, std::vector<char>& live, std::vector<std::pair<int, int>>& both) {
-    std::unordered_map<Tri, std::array<int, 2>, TriangleKeyHash> first; // sorted corners -> first of each winding
-    first.reserve(tris.size());
-    long dropped = 0;
+    // The live facets by their sorted corners, each set of corners in the facets' order: a sort,
+    // where a hash map of a million facets spends its time allocating.
+    std::vector<std::pair<Tri, int>> keyed;
+    keyed.reserve(tris.size());
     for (size_t f = 0; f < tris.size(); ++f) {
         if (!live[f]) continue;
         Tri key = tris[f];
         std::sort(key.begin(), key.end());
-        auto [it, inserted] = first.try_emplace(key, std::array<int, 2>{static_cast<int>(f), -1});
-        if (inserted) continue;
-        std::array<int, 2>& seen = it->second;
-        const int winding = rotated(tris[f]) == rotated(tris[seen[0]]) ? 0 : 1;
-        if (winding == 1 && seen[1] < 0) {
-            seen[1] = static_cast<int>(f); // kept until the sheet test decides
-            both.emplace_back(seen[0], seen[1]);
-            continue;
-        }
-        live[f] = 0;
-        ++dropped;
+        keyed.emplace_back(key, static_cast<int>(f));
     }
+    std::sort(keyed.begin(), keyed.end());
+    long dropped = 0;
+    for (size_t i = 0; i < keyed.size();) {
+        size_t end = i + 1;
+        while (end < keyed.size() && keyed[end].first == keyed[i].first) ++end;
+        const int first = keyed[i].second; // the first listed of these corners
+        int other = -1;                     // the first listed the other way round
+        for (size_t k = i + 1; k < end; ++k) {
+            const int f = keyed[k].second;
+            if (other < 0 && rotated(tris[f]) != rotated(tris[first])) {
+                other = f; // kept until the sheet test decides
+                both.emplace_back(first, f);
+                continue;
+            }
+            live[f] = 0;
+            ++dropped;
+        }
+        i = end;
+    }
+    // In the order of the second facet of each pair, as a pass over the facets finds them.
+    std::sort(both.begin(), both.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
     return dropped;
 }
 
@@ -86,20 +97,25 @@ std::vector<char> two_sided(const std::vector<Tri>& tris, const std::vector<char
 
 // Step 4: the zero-area facets whose sides all keep two facets or more, or none, without them.
 long drop_zero_area(const Points& points, const std::vector<Tri>& tris, std::vector<char>& live) {
-    std::unordered_map<uint64_t, int> uses;
+    std::vector<size_t> flat; // the live facets of zero area, in order
     for (size_t f = 0; f < tris.size(); ++f)
-        if (live[f])
-            for (int j = 0; j < 3; ++j) ++uses[edge_key(tris[f][j], tris[f][(j + 1) % 3])];
+        if (live[f] && zero_area(points.row(tris[f][0]).transpose(), points.row(tris[f][1]).transpose(),
+                                 points.row(tris[f][2]).transpose()))
+            flat.push_back(f);
+    if (flat.empty()) return 0;
+    const EdgeUses edges = edge_uses(tris[0].data(), static_cast<long>(tris.size()), live);
+    std::vector<int32_t> edge_of(3 * tris.size(), -1); // per side 3 f + j of a live facet, its edge
+    std::vector<int> uses(static_cast<size_t>(edges.size()));
+    for (long e = 0; e < edges.size(); ++e) {
+        uses[e] = static_cast<int>(edges.count(e));
+        for (const int32_t* use = edges.uses.begin(e); use != edges.uses.end(e); ++use) edge_of[*use] = static_cast<int32_t>(e);
+    }
     long dropped = 0;
-    for (size_t f = 0; f < tris.size(); ++f) {
-        const Tri& t = tris[f];
-        if (!live[f] || !zero_area(points.row(t[0]).transpose(), points.row(t[1]).transpose(),
-                                   points.row(t[2]).transpose()))
-            continue;
+    for (const size_t f : flat) {
         bool closes = false; // a side that has this facet and one other only
-        for (int j = 0; j < 3; ++j) closes |= uses[edge_key(t[j], t[(j + 1) % 3])] == 2;
+        for (int j = 0; j < 3; ++j) closes |= uses[edge_of[3 * f + j]] == 2;
         if (closes) continue;
-        for (int j = 0; j < 3; ++j) --uses[edge_key(t[j], t[(j + 1) % 3])];
+        for (int j = 0; j < 3; ++j) --uses[edge_of[3 * f + j]];
         live[f] = 0;
         ++dropped;
     }

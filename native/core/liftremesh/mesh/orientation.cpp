@@ -13,12 +13,12 @@ std::vector<char> orient_components(const Points& points, std::vector<std::array
     auto alive = [&live](size_t f) { return live.empty() || live[f]; };
     static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(int32_t), "triangles stored as consecutive corners");
     const EdgeUses edges = edge_uses(n == 0 ? nullptr : triangles[0].data(), static_cast<long>(n), live);
-    std::vector<uint64_t> keys(static_cast<size_t>(edges.size())); // sorted, as the edges are
-    for (long e = 0; e < edges.size(); ++e) keys[e] = edge_key(edges.a[e], edges.b[e]);
-    // The other triangle on t's side a-b when exactly two live triangles use it, else -1.
-    auto across = [&](int t, int32_t a, int32_t b) {
-        const auto it = std::lower_bound(keys.begin(), keys.end(), edge_key(a, b));
-        const long e = it - keys.begin();
+    std::vector<int32_t> edge_of(3 * n, -1); // per side 3 t + j of a live triangle, its edge
+    for (long e = 0; e < edges.size(); ++e)
+        for (const int32_t* use = edges.uses.begin(e); use != edges.uses.end(e); ++use) edge_of[*use] = static_cast<int32_t>(e);
+    // The other triangle on t's side j when exactly two live triangles use it, else -1.
+    auto across = [&](int t, int j) {
+        const int32_t e = edge_of[3 * static_cast<size_t>(t) + j];
         if (edges.count(e) != 2) return -1;
         const int32_t* use = edges.uses.begin(e);
         return use[0] / 3 == t ? use[1] / 3 : use[0] / 3;
@@ -43,7 +43,7 @@ std::vector<char> orient_components(const Points& points, std::vector<std::array
             members.push_back(t);
             for (int j = 0; j < 3; ++j) {
                 const int32_t a = triangles[t][j], b = triangles[t][(j + 1) % 3];
-                const int u = across(t, a, b);
+                const int u = across(t, j);
                 if (u < 0 || component[u] >= 0) continue;
                 component[u] = next_component;
                 // t, once reoriented, runs a -> b iff it is not reversed; u must then run b -> a.
