@@ -1,4 +1,5 @@
 #include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/geometry.h"
 #include "liftremesh/repair/hole_filling.h"
 #include "liftremesh/repair/repair.h"
 #include "helpers.h"
@@ -7,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <array>
+#include <set>
+#include <algorithm>
 
 using namespace liftremesh;
 using namespace liftremesh::test;
@@ -354,6 +358,57 @@ TEST(HoleFilling, SaddleLoopIsFilledWithoutNonManifoldEdges) {
             EXPECT_FALSE(contains(left[0], 0));
         }
     }
+}
+
+// A hole across a knife edge, as the restricted Delaunay triangulation left one on the 30-degree
+// wedge of the crease prism (tests/freecad/cad_parts.py, 6000 vertices, seed 1): the surface
+// within 2.2 mm of it, faces y = 0 (facing -y) and the wedge's other face (facing
+// (-0.5, 0.87, 0)) meeting along the z axis. Most of the hole's loop lies on the first face, a
+// spike on the other, the rest on the edge. Projected onto the loop's best-fit plane the spike
+// folds over, and its constrained Delaunay triangulation held a triangle turned right over
+// against the face beside it (kappa 0.02 in the output). The fill must not fold back.
+TEST(HoleFilling, AHoleAcrossAKnifeEdgeIsNotFilledFoldedBack) {
+    const std::vector<Eigen::Vector3d> points = {
+        {1.0239, 0.5911, 1.7084}, {0.0861, 0.0222, 1.7399}, {1.8784, 0.0000, 2.2426}, {0.1263, 0.0339, 1.9910},
+        {0.7919, 0.4550, 2.4816}, {1.4531, 0.8389, 2.4573}, {2.3282, 0.0000, 2.8259}, {1.7712, 1.0226, 3.0445},
+        {0.0769, 0.0192, 2.5201}, {0.5025, 0.2901, 2.9049}, {0.7923, 0.4645, 3.1797}, {1.0072, -0.0000, 2.3600},
+        {0.6434, 0.0000, 3.0692}, {0.2782, 0.1138, 3.1201}, {1.4498, 0.0000, 2.9766}, {2.6621, 0.0000, 3.5972},
+        {0.1446, 0.0441, 3.4942}, {0.1276, 0.0300, 3.6083}, {1.4869, 0.8584, 3.6150}, {0.9185, 0.5333, 4.0213},
+        {1.6236, 0.9374, 4.2923}, {2.0789, 1.2003, 3.7121}, {1.9683, 0.0000, 3.4542}, {1.9791, 0.0000, 4.1396},
+        {1.1255, 0.0000, 3.7577}, {2.6722, 0.0000, 4.3965}, {0.1342, 0.0317, 4.1065}, {1.2033, 0.0000, 4.5542},
+        {0.0802, 0.0231, 4.4026}, {0.9864, 0.5695, 4.7497}, {0.1326, 0.0322, 4.7570}, {2.2402, 1.2934, 4.3889},
+        {0.0810, 0.0233, 5.1124}, {1.7329, 1.0005, 4.9671}, {0.1547, 0.0386, 5.4195}, {1.0776, 0.6221, 5.4762},
+        {1.2194, 0.0000, 5.2974}, {2.0074, -0.0000, 4.8789}, {0.1132, 0.0336, 5.6780},
+    };
+    const std::vector<std::array<int32_t, 3>> triangles = {
+        {0, 1, 3}, {0, 4, 5}, {0, 3, 4}, {4, 3, 8}, {4, 8, 9}, {4, 10, 5}, {4, 9, 10}, {3, 11, 8}, {8, 11, 12},
+        {8, 13, 9}, {8, 12, 13}, {11, 2, 14}, {11, 14, 12}, {13, 10, 9}, {13, 16, 10}, {13, 12, 16},
+        {10, 16, 17}, {10, 18, 7}, {10, 7, 5}, {10, 17, 19}, {10, 19, 18}, {2, 6, 14}, {18, 19, 20},
+        {18, 21, 7}, {18, 20, 21}, {22, 6, 15}, {22, 15, 23}, {22, 14, 6}, {22, 24, 14}, {22, 23, 24},
+        {15, 25, 23}, {26, 27, 28}, {19, 28, 29}, {19, 29, 20}, {28, 30, 29}, {28, 27, 30}, {24, 23, 27},
+        {21, 20, 31}, {29, 30, 32}, {29, 33, 20}, {29, 32, 34}, {29, 34, 35}, {29, 35, 33}, {30, 27, 36},
+        {30, 36, 32}, {27, 23, 37}, {27, 37, 36}, {33, 31, 20}, {23, 25, 37}, {32, 36, 34}, {34, 38, 35},
+    };
+    Mesh m = make_mesh(points, triangles);
+    const Eigen::Index before = m.triangles.rows();
+    const std::vector<int32_t> hole = {12, 14, 24, 27, 26, 28, 19, 17, 16};
+    const long filled = fill_holes(m, {[&](const std::vector<int32_t>& loop) {
+                                       return loop.size() == hole.size() && contains(loop, hole[0]) && contains(loop, hole[6]);
+                                   }}).filled;
+    ASSERT_EQ(filled, 1);
+    ASSERT_EQ(m.triangles.rows(), before + static_cast<Eigen::Index>(hole.size()) - 2);
+    // Each new triangle against the triangles it shares an edge with: never turned by more than
+    // 165 degrees (a knife edge of 15 degrees inside).
+    const EdgeUses edges = edge_uses(m.triangles);
+    auto normal = [&](long f) { return triangle_normal(corner(m, f, 0), corner(m, f, 1), corner(m, f, 2)); };
+    double worst = 1.0;
+    for (long e = 0; e < edges.size(); ++e) {
+        if (edges.count(e) != 2) continue;
+        const long f = edges.uses.begin(e)[0] / 3, g = edges.uses.begin(e)[1] / 3;
+        if (std::max(f, g) >= before) worst = std::min(worst, normal(f).dot(normal(g)));
+    }
+    EXPECT_GT(worst, std::cos(165.0 * M_PI / 180.0)) << "the cosine of the largest turn at a new triangle";
+    EXPECT_TRUE(topology(m).oriented_manifold());
 }
 
 TEST(HoleFilling, PinchedBoundaryIsSplitIntoSimpleLoops) {

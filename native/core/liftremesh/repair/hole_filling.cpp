@@ -149,8 +149,11 @@ struct Ring {
 // Everything a triangulation of one hole needs to read; local triangles index `loop`.
 class HoleTriangulator {
 public:
-    HoleTriangulator(const Points& points, const std::vector<int32_t>& loop, const EdgeSet& existing)
-        : loop_(loop), existing_(existing) {
+    //! `outer[i]`: the unit normal of the surface's triangle on the loop's edge i -> i + 1 (zero
+    //! if none).
+    HoleTriangulator(const Points& points, const std::vector<int32_t>& loop, const EdgeSet& existing,
+                     std::vector<Eigen::Vector3d> outer)
+        : loop_(loop), existing_(existing), outer_(std::move(outer)) {
         p_.reserve(loop.size());
         for (int32_t v : loop) p_.push_back(points.row(v).transpose());
     }
@@ -188,7 +191,11 @@ public:
         for (const auto& x : q) scale = std::max(scale, x.norm());
         const double eps = 1e-12 * scale * scale;
         std::vector<Tri> local;
-        if (std::abs(twice_area) > eps && is_simple(q, eps) &&
+        // A loop whose surface faces against the plane somewhere (a hole across a knife edge of
+        // the input) folds over when projected: the 3D path fills it.
+        bool faces_plane = true;
+        for (const Eigen::Vector3d& n : outer_) faces_plane = faces_plane && !(n.dot(normal) < 0.0);
+        if (faces_plane && std::abs(twice_area) > eps && is_simple(q, eps) &&
             (ear_clip_2d(q, eps, local) || (n <= kMaxExact && exact_2d(q, eps, local)))) {
             lawson_flips(q, eps, local);
         } else {
@@ -205,6 +212,10 @@ private:
     // Loops up to this size that ear clipping cannot finish, or that are not planar, are
     // triangulated exactly by an O(n^3) dynamic program; larger ones greedily in O(n^2).
     static constexpr int kMaxExact = 64;
+    // A patch triangle turned by more than this from the surface's triangle across a loop edge
+    // has folded back onto it: no knife edge of a CAD part is that sharp (15 degrees inside).
+    static constexpr double kFoldBackDeg = 165.0;
+    static inline const double kCosFoldBack = std::cos(kFoldBackDeg * M_PI / 180.0);
 
     // Whether the diagonal between loop positions a and c may be created.
     bool free_diagonal(int a, int c) const {
@@ -427,14 +438,28 @@ private:
         return reference.norm() > 0.0 ? reference : fallback;
     }
 
+    // Whether triangle (a, b, c), in loop order, folds back onto the surface across one of its
+    // edges on the loop: turned by more than kFoldBackDeg from the triangle there.
+    bool folds_back(int a, int b, int c, const Eigen::Vector3d& normal) const {
+        const int n = static_cast<int>(p_.size());
+        const int corner[3] = {a, b, c};
+        for (int j = 0; j < 3; ++j) {
+            const int from = corner[j], to = corner[(j + 1) % 3];
+            if (to == (from + 1) % n && normal.dot(outer_[from]) < kCosFoldBack) return true;
+        }
+        return false;
+    }
+
     // Score of triangle (a, b, c) for the 3D paths: kappa (Eq. 26) plus 2 if it is not flat and
-    // faces like `reference`, plus 1 if it is not flat but faces away; flat ones score kappa = 0.
+    // faces like `reference`, plus 1 if it is not flat but faces away; flat ones, and those that
+    // fold back onto the surface, score kappa alone.
     double score_3d(int a, int b, int c, const Eigen::Vector3d& reference) const {
         const Eigen::Vector3d cross = (p_[b] - p_[a]).cross(p_[c] - p_[a]);
         const double longest2 =
             std::max({(p_[b] - p_[a]).squaredNorm(), (p_[c] - p_[b]).squaredNorm(), (p_[a] - p_[c]).squaredNorm()});
         int tier = 0;
-        if (cross.norm() > 1e-12 * longest2) tier = cross.dot(reference) > 0.0 ? 2 : 1;
+        if (cross.norm() > 1e-12 * longest2 && !folds_back(a, b, c, cross.normalized()))
+            tier = cross.dot(reference) > 0.0 ? 2 : 1;
         return tier + kappa(a, b, c);
     }
 
@@ -479,6 +504,7 @@ private:
 
     const std::vector<int32_t>& loop_;
     const EdgeSet& existing_;
+    std::vector<Eigen::Vector3d> outer_; // per loop edge, the normal of the surface's triangle on it
     std::vector<Eigen::Vector3d> p_; // loop vertex positions
     EdgeSet created_;                // diagonals of the triangulation under construction
 };
@@ -512,6 +538,7 @@ HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params) {
         if (should_fill && !should_fill(loop)) continue;
         // Area-weighted normal of the triangles along the hole (cross products are 2 area * normal).
         Eigen::Vector3d surround = Eigen::Vector3d::Zero();
+        std::vector<Eigen::Vector3d> outer(loop.size(), Eigen::Vector3d::Zero());
         for (size_t i = 0; i < loop.size(); ++i) {
             const auto it = edge_triangle.find(edge_key(loop[i], loop[(i + 1) % loop.size()]));
             if (it == edge_triangle.end()) continue;
@@ -519,6 +546,7 @@ HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params) {
             const Eigen::Vector3d a = point(mesh.triangles(f, 0)), b = point(mesh.triangles(f, 1)),
                                   c = point(mesh.triangles(f, 2));
             surround += (b - a).cross(c - a);
+            outer[i] = triangle_normal(a, b, c);
         }
         std::vector<Tri> fill;
         if (loop.size() == 3) {
@@ -531,7 +559,7 @@ HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params) {
             if (present) continue;
             fill.push_back({loop[0], loop[1], loop[2]});
         } else {
-            HoleTriangulator triangulator(mesh.points, loop, existing);
+            HoleTriangulator triangulator(mesh.points, loop, existing, std::move(outer));
             if (!triangulator.triangulate(surround, fill)) continue;
         }
         for (const Tri& t : fill)
