@@ -11,8 +11,10 @@ namespace liftremesh {
 //! (Section 5.2.1), so triangles that touch the vertex only geometrically (across a gap or a
 //! T-junction) count as much as connected ones. Triangles facing away from the vertex's own
 //! one-ring normal by more than 120 degrees (the far side of a thin wall) are left out, unless
-//! they fill three times as much of the ball as the others: the vertex is then on a flap folded
-//! back onto the surface (a pleat), and the triangles facing away from the flap are averaged.
+//! they fill three times as much of the ball as the others and the vertex's own side reaches,
+//! across edges within the ball, an edge where the surface turns back by more than 120 degrees:
+//! the vertex is then on a flap folded back onto the surface (a pleat), and the triangles
+//! facing away from the flap are averaged.
 //! A vertex with no triangle to average keeps its one-ring (area-weighted) normal.
 Points vertex_normals(const Mesh& mesh, double eta);
 
