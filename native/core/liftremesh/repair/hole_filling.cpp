@@ -191,14 +191,14 @@ public:
         for (const auto& x : q) scale = std::max(scale, x.norm());
         const double eps = 1e-12 * scale * scale;
         std::vector<Tri> local;
-        // A loop whose surface faces against the plane somewhere (a hole across a knife edge of
-        // the input) folds over when projected: the 3D path fills it.
-        bool faces_plane = true;
-        for (const Eigen::Vector3d& n : outer_) faces_plane = faces_plane && !(n.dot(normal) < 0.0);
-        if (faces_plane && std::abs(twice_area) > eps && is_simple(q, eps) &&
-            (ear_clip_2d(q, eps, local) || (n <= kMaxExact && exact_2d(q, eps, local)))) {
-            lawson_flips(q, eps, local);
-        } else {
+        bool planar = std::abs(twice_area) > eps && is_simple(q, eps) &&
+                      (ear_clip_2d(q, eps, local) || (n <= kMaxExact && exact_2d(q, eps, local)));
+        if (planar) lawson_flips(q, eps, local);
+        // A hole across a knife edge of the input may project simple yet folded over: a triangle
+        // of its planar fill then folds back onto the surface across the loop. The 3D path
+        // fills it instead.
+        for (const Tri& t : local) planar = planar && !folds_back(t[0], t[1], t[2]);
+        if (!planar) {
             local.clear();
             created_.clear();
             const bool done = n <= kMaxExact ? exact_3d(normal, local) : ear_clip_3d(normal, local);
@@ -440,6 +440,10 @@ private:
 
     // Whether triangle (a, b, c), in loop order, folds back onto the surface across one of its
     // edges on the loop: turned by more than kFoldBackDeg from the triangle there.
+    bool folds_back(int a, int b, int c) const {
+        const Eigen::Vector3d cross = (p_[b] - p_[a]).cross(p_[c] - p_[a]);
+        return cross.norm() > 0.0 && folds_back(a, b, c, cross.normalized());
+    }
     bool folds_back(int a, int b, int c, const Eigen::Vector3d& normal) const {
         const int n = static_cast<int>(p_.size());
         const int corner[3] = {a, b, c};

@@ -44,13 +44,13 @@ struct HoleFillingParams {
 //! `params.should_fill(loop)` is true (all loops when it is empty; loops of fewer than 3
 //! vertices are never offered). Section 5.2.2: a loop of 3 vertices gets its one triangle; a
 //! longer one is projected onto its best-fit plane (PCA; normal = least-variance axis, oriented
-//! like the triangles around the hole) and, if the projected polygon is simple and every triangle
-//! around the hole faces the plane's side, triangulated by its constrained Delaunay
-//! triangulation (ear clipping, best kappa first, then Lawson flips of the diagonals until
-//! locally Delaunay); otherwise (or if the edge rule below blocks every planar ear) in 3D, taking
-//! the best-kappa triangles that face like the loop, and as the last resort, as flat ones do,
-//! those that fold back onto the triangle across a loop edge (turned by over 165 degrees: a hole
-//! across a knife edge projects folded over).
+//! like the triangles around the hole) and, if the projected polygon is simple, triangulated by
+//! its constrained Delaunay triangulation (ear clipping, best kappa first, then Lawson flips of
+//! the diagonals until locally Delaunay). Otherwise, if the edge rule below blocks every planar
+//! ear, or if a triangle of that fill folds back onto the triangle across a loop edge (turned by
+//! over 165 degrees: a hole across a knife edge projects simple yet folded over), it is
+//! triangulated in 3D, taking the best-kappa triangles that face like the loop, and those that
+//! fold back only as a last resort, as flat ones.
 //! Rules: no vertex is added or moved; every new triangle follows the loop order, so it is
 //! oriented like the surface; no new triangle creates an edge the mesh (or an earlier fill)
 //! already has, and a loop that cannot be triangulated under that rule is left open; a 3-loop
