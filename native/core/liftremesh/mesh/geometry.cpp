@@ -94,11 +94,11 @@ double triangle_ball_intersection_area(const Eigen::Vector3d& o, double r, const
 
 // The ball meets the triangle's plane in a disk of radius rho about o's foot o' = o + h n. The
 // area of triangle and disk is half the integral of n . (x - o') x dx round their common
-// boundary (Green): the parts of the edges inside the ball, each giving n . (x cross y) for its ends x
-// and y, and the arcs of the circle from where that boundary leaves it to where it comes back,
-// each giving rho^2 times its angle. Taken from o rather than o', points of the plane give the
-// same n . (x cross y), and x . y less h^2. One atan2 per arc, where a sum of signed wedges over the
-// three edges takes up to six.
+// boundary (Green): the parts of the edges inside the ball, each giving n . (x cross y) for its
+// ends x and y, and the arcs of the circle from where that boundary leaves it to where it comes
+// back, each giving rho^2 times its angle. Taken from o rather than o', points of the plane give
+// the same n . (x cross y), and x . y less h^2. One atan2 per arc, where a sum of signed wedges
+// over the three edges takes up to six.
 double triangle_ball_intersection_area(const Eigen::Vector3d& o, double r, const Eigen::Vector3d& a,
                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& n) {
     const Eigen::Vector3d p[3] = {a - o, b - o, c - o};
