@@ -104,12 +104,9 @@ long drop_zero_area(const Points& points, const std::vector<Tri>& tris, std::vec
             flat.push_back(f);
     if (flat.empty()) return 0;
     const EdgeUses edges = edge_uses(tris[0].data(), static_cast<long>(tris.size()), live);
-    std::vector<int32_t> edge_of(3 * tris.size(), -1); // per side 3 f + j of a live facet, its edge
+    const std::vector<int32_t> edge_of = edges.edge_of_sides(static_cast<long>(tris.size()));
     std::vector<int> uses(static_cast<size_t>(edges.size()));
-    for (long e = 0; e < edges.size(); ++e) {
-        uses[e] = static_cast<int>(edges.count(e));
-        for (const int32_t* use = edges.uses.begin(e); use != edges.uses.end(e); ++use) edge_of[*use] = static_cast<int32_t>(e);
-    }
+    for (long e = 0; e < edges.size(); ++e) uses[e] = static_cast<int>(edges.count(e));
     long dropped = 0;
     for (const size_t f : flat) {
         bool closes = false; // a side that has this facet and one other only

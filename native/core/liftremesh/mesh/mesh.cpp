@@ -118,6 +118,13 @@ EdgeUses edge_uses(const int32_t* corners, long count, const std::vector<char>& 
     return out;
 }
 
+std::vector<int32_t> EdgeUses::edge_of_sides(long triangles) const {
+    std::vector<int32_t> edge(3 * static_cast<size_t>(std::max(0L, triangles)), -1);
+    for (long e = 0; e < size(); ++e)
+        for (const int32_t* use = uses.begin(e); use != uses.end(e); ++use) edge[*use] = static_cast<int32_t>(e);
+    return edge;
+}
+
 EdgeUses edge_uses(const Triangles& triangles, const std::vector<char>& live) {
     return edge_uses(triangles.data(), static_cast<long>(triangles.rows()), live);
 }

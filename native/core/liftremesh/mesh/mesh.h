@@ -69,6 +69,9 @@ struct EdgeUses {
     CompressedRows uses;
     long size() const { return static_cast<long>(a.size()); }
     long count(long e) const { return uses.end(e) - uses.begin(e); }
+    //! Per side 3 f + j of the `triangles` triangles they were made from, its edge; -1 for the
+    //! sides of triangles left out (not live).
+    std::vector<int32_t> edge_of_sides(long triangles) const;
 };
 
 //! Whether the side `use` (3 f + j, as EdgeUses numbers it) runs from its edge's lower vertex

@@ -13,9 +13,7 @@ std::vector<char> orient_components(const Points& points, std::vector<std::array
     auto alive = [&live](size_t f) { return live.empty() || live[f]; };
     static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(int32_t), "triangles stored as consecutive corners");
     const EdgeUses edges = edge_uses(n == 0 ? nullptr : triangles[0].data(), static_cast<long>(n), live);
-    std::vector<int32_t> edge_of(3 * n, -1); // per side 3 t + j of a live triangle, its edge
-    for (long e = 0; e < edges.size(); ++e)
-        for (const int32_t* use = edges.uses.begin(e); use != edges.uses.end(e); ++use) edge_of[*use] = static_cast<int32_t>(e);
+    const std::vector<int32_t> edge_of = edges.edge_of_sides(static_cast<long>(n));
     // The other triangle on t's side j when exactly two live triangles use it, else -1.
     auto across = [&](int t, int j) {
         const int32_t e = edge_of[3 * static_cast<size_t>(t) + j];
