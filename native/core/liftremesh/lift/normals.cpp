@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace liftremesh {
@@ -77,7 +78,8 @@ Points vertex_normals(const Mesh& mesh, double eta) {
     // Vertices in Morton order: consecutive balls meet the same nodes, still in the cache.
     const std::vector<long> order = morton_order(mesh.points.data(), nv, 3);
     Points normals(nv, 3);
-    std::vector<Eigen::Index> flap_candidates;
+    // Vertices whose far side fills most of their ball, with that side's sum.
+    std::vector<std::pair<Eigen::Index, Eigen::Vector3d>> flap_candidates;
 #pragma omp parallel for schedule(dynamic, 256)
     for (Eigen::Index i = 0; i < nv; ++i) {
         const Eigen::Index v = order[i];
@@ -88,7 +90,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
         // Unless it holds most of the ball: the vertex may be on a flap (below).
         if (sums.against.norm() > kFoldedFlapRatio * sums.facing.norm()) {
 #pragma omp critical(folded_flaps)
-            flap_candidates.push_back(v);
+            flap_candidates.emplace_back(v, sums.against);
         }
         const double len = sums.facing.norm();
         normals.row(v) = (len > 0.0 ? Eigen::Vector3d(sums.facing / len) : own).transpose();
@@ -98,13 +100,13 @@ Points vertex_normals(const Mesh& mesh, double eta) {
     // (Eq. 12) would set the flap apart from the surface, an island of sites of its own. Few
     // vertices, if any: the edges' triangles are listed for them alone.
     if (!flap_candidates.empty()) {
-        std::sort(flap_candidates.begin(), flap_candidates.end());
+        std::sort(flap_candidates.begin(), flap_candidates.end(),
+                  [](const auto& p, const auto& q) { return p.first < q.first; });
         const CompressedRows around = vertex_triangles(mesh);
-        for (const Eigen::Index v : flap_candidates) {
+        for (const auto& [v, surface] : flap_candidates) {
             const Eigen::Vector3d x = mesh.points.row(v).transpose();
             const Eigen::Vector3d own = ring.row(v).transpose().normalized();
             if (!on_folded_flap(mesh, around, v, own, eta)) continue;
-            const Eigen::Vector3d surface = tree.area_weighted_normals_in_ball(x, eta, {own, kFacingMinDot}).against;
             const Eigen::Vector3d sum = tree.area_weighted_normals_in_ball(x, eta, {surface.normalized(), kFacingMinDot}).facing;
             if (sum.norm() > 0.0) normals.row(v) = sum.normalized().transpose();
         }

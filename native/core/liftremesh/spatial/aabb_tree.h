@@ -62,7 +62,8 @@ public:
     //! the tree holds them. Thread-safe (const).
     void triangles_within(const Eigen::Vector3d& q, double r, std::vector<int32_t>& out) const;
 
-    //! Triangles whose unit normal n has n.dot(direction) >= min_dot: those a ball sum counts.
+    //! Triangles whose unit normal n has n.dot(direction) >= min_dot: those a ball's `facing`
+    //! sum counts (BallNormalSums).
     struct FacingWith {
         Eigen::Vector3d direction;
         double min_dot;
