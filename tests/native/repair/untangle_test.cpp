@@ -1,7 +1,9 @@
 // Untangling: flips, then vertex moves, that take triangles out of each other, and only where they
 // keep the surface on the input.
 #include "helpers.h"
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
+#include "liftremesh/measure/quality.h"
 #include "liftremesh/repair/untangle.h"
 #include "liftremesh/spatial/aabb_tree.h"
 #include "liftremesh/spatial/self_intersection.h"
@@ -35,6 +37,61 @@ UntangleParams with_tolerance(double tolerance) {
     p.tolerance = tolerance;
     return p;
 }
+
+// The 1.1M-triangle bunny of `make bench` (the shared bunny, each triangle split twice) at 100000
+// vertices: a spot of its base where the input turns by 50 to 90 degrees at five edges around one
+// vertex, and the output's 30 triangles there pass through each other in 10 pairs. Coordinates
+// relative to (-0.04335, 0.0344, -0.0264), times 10^4; the run's tolerance, likewise.
+const std::vector<Eigen::Vector3d> kSpikeInputPoints = {
+        {-6.400011, 6.929983, 7.690006}, {0.480004, -1.270014, -3.130006}, {2.969988, 1.430002, 0.620001},
+        {8.650013, -4.869986, 1.810008}, {8.220002, -2.785015, -9.545003}, {2.074987, 11.30001, 0.510003},
+        {-2.960004, 2.829985, 2.28}, {-1.715012, 4.179992, 4.155004}, {-2.944991, -1.160007, 5.420001},
+        {3.364999, 6.519996, -7.530003}, {1.724996, 0.079994, -1.255003}, {4.565008, -3.07, -0.659999},
+        {1.140014, -2.959992, 7.890008}, {4.609992, 7.870004, -5.654999}, {-4.680007, 4.879984, 4.985003},
+        {-6.392505, 4.934988, 9.260007}, {-4.057511, 5.554988, 5.922505}, {4.350003, -2.027514, -6.337504},
+        {-1.24, 0.779985, -0.425003}, {-1.232493, -1.21501, 1.144997}, {1.922502, 2.624991, -5.330004}, {1.1025,
+        -0.59501, -2.192504}, {2.522506, -2.170007, -1.895003}, {-4.657488, -1.105003, 9.695005}, {-2.614986,
+        -2.004996, 10.930008}, {2.522488, 6.365006, 0.565002}, {0.627488, 2.804997, 2.387502}, {2.347492,
+        0.754998, -0.317501}, {3.78999, 4.650003, -2.517499}, {10.47751, -4.727494, -2.632494}, {6.607511,
+        -3.969993, 0.575004}, {4.895014, -3.914989, 4.850008}, {6.612512, -5.427485, 6.592508}, {5.792501,
+        1.867491, -8.537503}, {6.392505, -2.927508, -5.102501}, {8.435008, -3.827501, -3.867497}, {-2.162512,
+        9.114996, 4.100004}, {0.179988, 7.740001, 2.332503}, {3.342489, 9.585007, -2.572498}, {-4.672501,
+        2.884988, 6.555003}, {-2.337508, 3.504988, 3.217502}, {-2.952497, 0.834989, 3.850001}, {-0.617504,
+        1.454989, 0.512499}, {-4.664994, 0.889993, 8.125004}, {0.004992, 2.129993, 1.45}, {0.810009, -2.115003,
+        2.380001}, {-0.902488, -2.06, 6.655005}, {2.544998, 3.299995, -4.392503}, {3.987496, 7.195001,
+        -6.592501}, {3.167494, 3.974999, -3.455001}, {2.852511, -3.014996, 3.615004}, {2.857513, -4.472488,
+        9.632508}
+};
+const std::vector<std::array<int32_t, 3>> kSpikeInputTriangles = {
+        {1, 18, 21}, {1, 20, 17}, {2, 28, 27}, {3, 32, 31}, {1, 22, 19}, {6, 18, 41}, {6, 14, 40}, {5, 25, 37},
+        {13, 28, 38}, {11, 30, 50}, {10, 44, 27}, {10, 47, 21}, {4, 34, 17}, {8, 46, 23}, {6, 41, 39}, {6, 40,
+        42}, {13, 48, 49}, {11, 50, 45}, {14, 6, 39}, {18, 6, 42}, {20, 9, 33}, {28, 13, 49}, {22, 11, 45}, {18,
+        1, 19}, {14, 0, 16}, {25, 2, 26}, {28, 2, 25}, {29, 3, 30}, {30, 3, 31}, {43, 8, 23}, {44, 7, 26}, {36,
+        7, 16}, {47, 9, 20}, {34, 11, 22}, {46, 12, 24}, {41, 8, 43}, {40, 7, 44}, {37, 7, 36}, {48, 9, 47},
+        {35, 11, 34}, {50, 12, 46}, {21, 42, 10}, {27, 49, 10}, {31, 51, 12}, {19, 45, 8}, {41, 19, 8}, {40, 16,
+        7}, {37, 26, 7}, {38, 25, 5}, {35, 30, 11}, {50, 31, 12}, {27, 26, 2}, {21, 20, 1}, {17, 22, 1}, {42,
+        44, 10}, {49, 47, 10}, {45, 46, 8}, {14, 39, 15}, {18, 42, 21}, {20, 33, 17}, {28, 49, 27}, {32, 51,
+        31}, {22, 45, 19}, {18, 19, 41}, {14, 16, 40}, {25, 26, 37}, {28, 25, 38}, {29, 30, 35}, {30, 31, 50},
+        {44, 26, 27}, {47, 20, 21}, {34, 22, 17}, {46, 24, 23}, {41, 43, 39}, {40, 44, 42}, {48, 47, 49}, {50,
+        46, 45}
+};
+const std::vector<Eigen::Vector3d> kSpikeOutputPoints = {
+        {7.417647, 2.818551, -10.18961}, {4.282648, -2.076473, -6.083286}, {1.409369, 1.460886, -4.426219},
+        {4.717784, 8.848806, -8.787486}, {0.560752, 9.419109, 2.062043}, {4.231917, 6.385375, -4.208408},
+        {-3.066933, 4.295636, 4.385144}, {10.418468, -4.568836, -3.494731}, {4.324963, -3.137161, 0.387222},
+        {-5.333642, 2.055678, 8.735754}, {-1.500568, -2.382176, 10.283785}, {2.969988, 1.430002, 0.620001},
+        {-2.321639, 0.856031, -1.061929}, {2.346182, 2.113304, -0.030689}, {-2.474104, -0.821373, 3.800295},
+        {4.159426, -4.336813, 7.24752}, {9.897762, -5.750066, 4.594726}, {-0.376245, -1.242512, -0.992504},
+        {0.480004, -1.270014, -3.130006}, {-0.446176, -1.240266, -0.817931}, {2.746238, 3.897504, 0.592501},
+        {-1.232493, -1.21501, 1.144997}, {-4.657488, -1.105003, 9.695005}
+};
+const std::vector<std::array<int32_t, 3>> kSpikeOutputTriangles = {
+        {0, 1, 2}, {8, 18, 1}, {1, 7, 8}, {11, 12, 6}, {2, 17, 11}, {12, 17, 13}, {12, 14, 6}, {12, 13, 21}, {2,
+        18, 13}, {2, 5, 3}, {6, 14, 9}, {10, 22, 14}, {14, 15, 10}, {14, 19, 8}, {13, 18, 19}, {15, 8, 16}, {4,
+        20, 6}, {5, 20, 4}, {11, 20, 2}, {17, 12, 11}, {17, 2, 13}, {18, 2, 1}, {18, 8, 19}, {19, 14, 13}, {15,
+        14, 8}, {20, 11, 6}, {20, 5, 2}, {13, 14, 21}, {14, 12, 21}, {22, 9, 14}
+};
+constexpr double kSpikeTolerance = 1.22966739;
 
 } // namespace
 
@@ -130,6 +187,31 @@ TEST(Untangle, NoMoveMakesATriangleFaceAgainstTheInput) {
     EXPECT_EQ(stats.moved, 0);
     EXPECT_FALSE(stats.crossings.empty());
     EXPECT_EQ(m.points, pushed.points);
+}
+
+TEST(Untangle, EditsThatKeepTheProjectsFloorAreTriedFirst) {
+    // At the spike, a flip down to the last resort's floor undoes a crossing first and leaves a
+    // triangle of kappa 0.28, and the moves that follow cannot undo the rest. Tried before it,
+    // the moves that keep kappa over 0.3 undo all ten crossings, and no flip is needed.
+    const test::OwnedReference input(make_mesh(kSpikeInputPoints, kSpikeInputTriangles));
+    const Mesh patch = make_mesh(kSpikeOutputPoints, kSpikeOutputTriangles);
+    ASSERT_EQ(crossings(patch).size(), 10u);
+    ASSERT_GE(measure_quality(patch).kappa_min, kKappaFloor);
+
+    UntangleParams last_resort_only = with_tolerance(kSpikeTolerance);
+    last_resort_only.preferred_kappa_floor = last_resort_only.kappa_floor;
+    Mesh greedy = patch;
+    const UntangleStats greedy_stats = untangle(greedy, input, last_resort_only);
+    EXPECT_FALSE(greedy_stats.crossings.empty());
+    EXPECT_LT(measure_quality(greedy).kappa_min, kKappaFloor);
+
+    Mesh m = patch;
+    const UntangleStats stats = untangle(m, input, with_tolerance(kSpikeTolerance));
+    EXPECT_TRUE(stats.crossings.empty());
+    EXPECT_TRUE(crossings(m).empty());
+    EXPECT_EQ(stats.flipped, 0);
+    EXPECT_GE(measure_quality(m).kappa_min, kKappaFloor);
+    EXPECT_EQ(euler_characteristic(m), euler_characteristic(patch));
 }
 
 TEST(Untangle, RefusesABadTolerance) {

@@ -5,8 +5,9 @@
 
 namespace liftremesh {
 
-//! Undoing a crossing (repair/untangle.h): two triangles passing through each other are what a
-//! tetrahedral mesher refuses, so a poor triangle is the smaller defect.
+//! Undoing a crossing (repair/untangle.h), as a last resort after the edits that keep
+//! kKappaFloor: two triangles passing through each other are what a tetrahedral mesher refuses,
+//! so a poor triangle is the smaller defect.
 inline constexpr double kKappaFloorUntangle = 0.2;
 
 //! Undoing a fold, a folded pair or a boundary cut short (polish/, edit/edge_collapse.h,

@@ -13,6 +13,10 @@
 //   point), leaves its fan the fewest crossings (with the rest and among themselves), if fewer
 //   than before, and then the best worst kappa; under the same rules as a flip, and no more of
 //   its triangles facing against the input's triangle nearest to them than before (no fold).
+// - Both, first with no triangle made below the project's floor (kappa 0.3), then, for the
+//   crossings left, down to the last resort's (0.2). With the lower floor alone, a flip that
+//   undoes one crossing with a sliver can leave the crossings beside it to moves that no longer
+//   undo them, where moves at the higher floor undo them all.
 // Nothing changes on a mesh without crossings; no vertex is added or removed, and no vertex on a
 // border moves; topology and orientation are kept.
 #pragma once
@@ -34,11 +38,15 @@ struct UntangleParams {
     //! (the pipeline's: kInputTolerance, steps.h). Positive and finite.
     double tolerance = 0.0;
     //! Passes of flips around the triangles still crossing, each after a fresh count; then as
-    //! many passes of moves.
+    //! many passes of moves; at each of the two floors.
     int passes = 4;
     //! A flip or move may not make a triangle of kappa (Eq. 26) below this, unless the worst
-    //! one it changes was lower still.
+    //! one it changes was lower still: the last resort, for the crossings that edits keeping
+    //! preferred_kappa_floor leave.
     double kappa_floor = kKappaFloorUntangle;
+    //! The floor of the edits tried first (flips, then moves). A greedy flip down to kappa_floor
+    //! can block the moves that would have undone the same crossing with good triangles.
+    double preferred_kappa_floor = kKappaFloor;
 };
 
 struct UntangleStats {
