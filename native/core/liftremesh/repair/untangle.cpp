@@ -76,8 +76,7 @@ struct PassTriangles {
 //! One pass of flips around the triangles of `crossings` (see untangle()), written into
 //! `mesh`; the pass's copies of the mesh are gone when it returns. Returns the flips.
 long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
-                   const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params,
-                   double kappa_floor) {
+                   const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
     EditableMesh edit(mesh);
     PassTriangles triangles(edit, mesh_tree);
     std::vector<char> around(edit.tris.size(), 0), changed;
@@ -87,7 +86,7 @@ long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
         const auto [n1, n2] = EditableMesh::flipped(q);
         if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
         const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
-        if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, kappa_floor))) return false;
+        if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
         if (!(triangles.crossings_of({n1, n2}, {q.t1, q.t2}) < triangles.crossings_of({t1, t2}, {q.t1, q.t2})))
             return false;
         const double near_before = std::max(triangle_distance_from_input(edit, t1, input),
@@ -128,8 +127,7 @@ FanState fan_state(const EditableMesh& mesh, const std::vector<Tri>& fan, const 
 //! One pass of moves over the inner vertices of the triangles of `crossings`, in index order
 //! (see untangle()), written into `mesh`. Returns the moves.
 long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
-               const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params,
-               double kappa_floor) {
+               const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
     EditableMesh edit(mesh);
     PassTriangles triangles(edit, mesh_tree);
     const CompressedRows fans = edit.fans();
@@ -169,7 +167,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
             if (after > fewest) continue;
             const FanState now = fan_state(edit, fan_tris, input);
             if (now.degenerate || now.against > was.against ||
-                !(now.worst_kappa >= std::min(was.worst_kappa, kappa_floor)) ||
+                !(now.worst_kappa >= std::min(was.worst_kappa, params.kappa_floor)) ||
                 !(now.farthest <= std::max(was.farthest, params.tolerance)))
                 continue;
             if (after < fewest || now.worst_kappa > best_kappa) {
@@ -213,15 +211,17 @@ UntangleStats untangle(Mesh& mesh, const Reference& reference, const UntanglePar
     // Edits that keep the preferred floor first, then, for the crossings they leave, those down
     // to the last resort's; at each floor flips first, since they move no vertex, then moves for
     // what they leave.
+    UntangleParams at = params; // the passes' floor: the preferred one, then the last resort's
     for (const double kappa_floor : {std::max(params.preferred_kappa_floor, params.kappa_floor), params.kappa_floor}) {
+        at.kappa_floor = kappa_floor;
         for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-            const long flips = untangle_pass(mesh, tree(), input, crossings, params, kappa_floor);
+            const long flips = untangle_pass(mesh, tree(), input, crossings, at);
             if (flips == 0) break;
             stats.flipped += flips;
             recount();
         }
         for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-            const long moves = move_pass(mesh, tree(), input, crossings, params, kappa_floor);
+            const long moves = move_pass(mesh, tree(), input, crossings, at);
             if (moves == 0) break;
             stats.moved += moves;
             recount();
