@@ -12,6 +12,29 @@
 
 namespace liftremesh {
 
+namespace {
+// Each triangle's tangent basis (Eq. 15), one triangle at a time: in parallel, each thread with
+// its own vectors, allocated once.
+void tangent_bases(LiftedSurface& s) {
+    const Eigen::Index nf = s.triangles.rows(), d = s.points.cols();
+#pragma omp parallel
+    {
+        Eigen::VectorXd x1(d), x2(d), x3(d), u1(d), u2(d);
+#pragma omp for schedule(static, 4096)
+        for (Eigen::Index f = 0; f < nf; ++f) {
+            x1 = s.points.row(s.triangles(f, 0)).transpose();
+            x2 = s.points.row(s.triangles(f, 1)).transpose();
+            x3 = s.points.row(s.triangles(f, 2)).transpose();
+            if (tangent_basis<Eigen::Dynamic>(x1, x2, x3, u1, u2)) {
+                s.u1.row(f) = u1.transpose();
+                s.u2.row(f) = u2.transpose();
+                s.valid[f] = 1;
+            }
+        }
+    }
+}
+} // namespace
+
 LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eigen::VectorXd weights) {
     LiftedSurface s;
     const int d = static_cast<int>(points.cols());
@@ -23,17 +46,7 @@ LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eige
     s.u1 = LiftedPoints::Zero(nf, d);
     s.u2 = LiftedPoints::Zero(nf, d);
     s.valid.assign(nf, 0);
-    for (Eigen::Index f = 0; f < nf; ++f) {
-        const Eigen::VectorXd x1 = s.points.row(s.triangles(f, 0)).transpose();
-        const Eigen::VectorXd x2 = s.points.row(s.triangles(f, 1)).transpose();
-        const Eigen::VectorXd x3 = s.points.row(s.triangles(f, 2)).transpose();
-        Eigen::VectorXd u1, u2;
-        if (tangent_basis<Eigen::Dynamic>(x1, x2, x3, u1, u2)) { // Eq. 15
-            s.u1.row(f) = u1.transpose();
-            s.u2.row(f) = u2.transpose();
-            s.valid[f] = 1;
-        }
-    }
+    tangent_bases(s);
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> centroids(nf, 3);
     for (Eigen::Index f = 0; f < nf; ++f)
         centroids.row(f) = (s.points.row(s.triangles(f, 0)).leftCols<3>() + s.points.row(s.triangles(f, 1)).leftCols<3>() +
