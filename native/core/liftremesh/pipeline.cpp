@@ -159,9 +159,10 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
                 long sites_wanted, double total_area, long& midpoints_left) {
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
-    const Points normals = vertex_normals(unit, params.eta); // Section 5.2.1
-    // Built once the normals' own tree is freed, so that the two are never held at once.
+    // One tree over the input serves the normals and, later, the thin walls and the projections
+    // back onto it: the unit-ball copy's normals at eta are the input's at eta times the scale.
     piece.tree = std::make_unique<AabbTree>(input);
+    const Points normals = vertex_normals(input, *piece.tree, params.eta * to_unit.scale); // Section 5.2.1
     const Eigen::VectorXd turn = triangle_normal_turn(unit, normals, params.eta); // Eqs. 22-23
     const Eigen::VectorXd weights = density_weights((1.0 + turn.array()).matrix(), params.delta); // Eqs. 24-25
     const double reach = wall_reach(params.nu, spacing);

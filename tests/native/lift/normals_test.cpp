@@ -140,18 +140,39 @@ TEST_P(NormalsOnSharedMesh, SubtreeSumsGiveTheClippedSums) {
         for (int j = 0; j < 3; ++j)
             ring.row(mesh.triangles(f, j)) += triangle_area(a, b, c) * triangle_normal(a, b, c).transpose();
     }
+    const AabbTree::NormalSums sums_of = tree.normal_sums();
     std::vector<int32_t> found;
     for (const double eta : {0.02, 0.005}) {
         double worst = 0.0; // largest difference, relative to the ball's disk
         for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
             const Eigen::Vector3d x = mesh.points.row(v).transpose();
             const Eigen::Vector3d own = ring.row(v).transpose().normalized();
-            const AabbTree::BallNormalSums fast = tree.area_weighted_normals_in_ball(x, eta, {own, -0.5});
+            const AabbTree::BallNormalSums fast = tree.area_weighted_normals_in_ball(sums_of, x, eta, {own, -0.5});
             const AabbTree::BallNormalSums plain = clipped_sums(mesh, tree, x, eta, own, found);
             worst = std::max({worst, (fast.facing - plain.facing).norm(), (fast.against - plain.against).norm()});
         }
         EXPECT_LT(worst / (M_PI * eta * eta), 1e-12) << "eta " << eta;
     }
+}
+
+// The pipeline takes the normals of the input itself, at eta times the unit-ball scale, with the
+// tree it keeps for the input: they are those of the unit-ball copy at eta (what it took before
+// it kept one tree) up to rounding, far within the 1e-6 rad issue 36 allows.
+TEST_P(NormalsOnSharedMesh, TheInputsNormalsAreTheUnitCopysAtTheScaledRadius) {
+    LIFTREMESH_REQUIRE_SHARED(path, GetParam());
+    const Mesh input = read_mesh(path);
+    const UnitBallTransform to_unit = unit_ball_transform(input);
+    Mesh unit = input;
+    apply_transform(to_unit, unit.points);
+    const double eta = 0.02;
+    const Points of_unit = vertex_normals(unit, eta);
+    const Points of_input = vertex_normals(input, AabbTree(input), eta * to_unit.scale);
+    double worst = 0.0; // radians
+    for (Eigen::Index v = 0; v < input.points.rows(); ++v) {
+        const Eigen::Vector3d a = of_unit.row(v).transpose(), b = of_input.row(v).transpose();
+        worst = std::max(worst, std::atan2(a.cross(b).norm(), a.dot(b)));
+    }
+    EXPECT_LT(worst, 1e-9);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, NormalsOnSharedMesh,

@@ -60,7 +60,9 @@ bool on_folded_flap(const Mesh& mesh, const CompressedRows& around, Eigen::Index
 }
 } // namespace
 
-Points vertex_normals(const Mesh& mesh, double eta) {
+Points vertex_normals(const Mesh& mesh, double eta) { return vertex_normals(mesh, AabbTree(mesh), eta); }
+
+Points vertex_normals(const Mesh& mesh, const AabbTree& tree, double eta) {
     const Eigen::Index nv = mesh.points.rows(), nf = mesh.triangles.rows();
     Points ring = Points::Zero(nv, 3); // one-ring, area-weighted: the fallback and the side test
     for (Eigen::Index f = 0; f < nf; ++f) {
@@ -68,13 +70,13 @@ Points vertex_normals(const Mesh& mesh, double eta) {
         const Eigen::Vector3d weighted = triangle_area(a, b, c) * triangle_normal(a, b, c);
         for (int j = 0; j < 3; ++j) ring.row(mesh.triangles(f, j)) += weighted.transpose();
     }
-    // The triangles that meet each ball, from an AABB tree: a ball query on centroids needs a
+    // The triangles that meet each ball, from the AABB tree: a ball query on centroids needs a
     // radius grown by the longest triangle's reach, and on a fan of long slivers (a CAD disk)
     // finds most of them from every vertex. Inside the ball a triangle weighs its whole area,
     // and the tree adds whole subtrees inside it at once: only the triangles crossing the sphere
-    // are clipped, so the cost goes with the ball's rim, not its area.
-    const AabbTree tree(mesh);
-
+    // are clipped, so the cost goes with the ball's rim, not its area. The sums it adds up are
+    // dropped on return: the caller's tree outlives them.
+    const AabbTree::NormalSums sums_of = tree.normal_sums();
     // Vertices in Morton order: consecutive balls meet the same nodes, still in the cache.
     const std::vector<long> order = morton_order(mesh.points.data(), nv, 3);
     Points normals(nv, 3);
@@ -86,7 +88,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
         const Eigen::Vector3d x = mesh.points.row(v).transpose();
         const Eigen::Vector3d own = ring.row(v).transpose().normalized();
         // The far side of a thin wall left out, as seen from the vertex's own normal.
-        const AabbTree::BallNormalSums sums = tree.area_weighted_normals_in_ball(x, eta, {own, kFacingMinDot});
+        const AabbTree::BallNormalSums sums = tree.area_weighted_normals_in_ball(sums_of, x, eta, {own, kFacingMinDot});
         // Unless it holds most of the ball: the vertex may be on a flap (below).
         if (sums.against.norm() > kFoldedFlapRatio * sums.facing.norm()) {
 #pragma omp critical(folded_flaps)
@@ -107,7 +109,7 @@ Points vertex_normals(const Mesh& mesh, double eta) {
             const Eigen::Vector3d x = mesh.points.row(v).transpose();
             const Eigen::Vector3d own = ring.row(v).transpose().normalized();
             if (!on_folded_flap(mesh, around, v, own, eta)) continue;
-            const Eigen::Vector3d sum = tree.area_weighted_normals_in_ball(x, eta, {surface.normalized(), kFacingMinDot}).facing;
+            const Eigen::Vector3d sum = tree.area_weighted_normals_in_ball(sums_of, x, eta, {surface.normalized(), kFacingMinDot}).facing;
             if (sum.norm() > 0.0) normals.row(v) = sum.normalized().transpose();
         }
     }

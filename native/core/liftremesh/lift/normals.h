@@ -3,6 +3,7 @@
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"
+#include "liftremesh/spatial/aabb_tree.h"
 
 namespace liftremesh {
 
@@ -17,6 +18,11 @@ namespace liftremesh {
 //! facing away from the flap are averaged.
 //! A vertex with no triangle to average keeps its one-ring (area-weighted) normal.
 Points vertex_normals(const Mesh& mesh, double eta);
+
+//! The same with `tree`, built over mesh's triangles, as the caller keeps one: the normals of a
+//! similar copy of the mesh (scaled by s, moved) are those of the mesh at radius eta / s, to
+//! rounding, so a tree over the input serves its unit-ball copy.
+Points vertex_normals(const Mesh& mesh, const AabbTree& tree, double eta);
 
 //! #V by d lifted points x (+) nu n (Eq. 12): d = 6, or d = 3 (the plain surface) when nu == 0.
 LiftedPoints lift(const Points& points, const Points& normals, double nu);

@@ -169,39 +169,8 @@ struct AabbTree::Impl {
     //! only the thin-wall search does (bound_normals).
     std::vector<NormalBox> normal_boxes;
     std::once_flag normals_bounded;
-    //! Per triangle in tree order, its unit normal and its area times it; per node, the sum of
-    //! the latter over its triangles. Made by the first ball sum (sum_normals).
-    std::vector<Eigen::Vector3d> ordered_normals, weighted_normals, node_normal_sums;
-    std::once_flag normals_summed;
-
     const std::vector<NormalBox>& bound_normals();
-    void sum_normals();
 };
-
-void AabbTree::Impl::sum_normals() {
-    std::call_once(normals_summed, [this] {
-        const auto nt = static_cast<int32_t>(ids.size());
-        ordered_normals.resize(ids.size());
-        weighted_normals.resize(ids.size());
-#pragma omp parallel for schedule(static) if (nt >= kParallelSize)
-        for (int32_t t = 0; t < nt; ++t) {
-            const Eigen::Vector3d* c = &corners[3 * static_cast<size_t>(t)];
-            ordered_normals[t] = normals[ids[t]];
-            weighted_normals[t] = triangle_area(c[0], c[1], c[2]) * normals[ids[t]];
-        }
-        node_normal_sums.assign(nodes.size(), Eigen::Vector3d::Zero());
-        // Children come after their parent (Builder), so one backward pass sums every node.
-        for (size_t i = nodes.size(); i-- > 0;) {
-            const Node& node = nodes[i];
-            Eigen::Vector3d& sum = node_normal_sums[i];
-            if (node.count > 0) {
-                for (int32_t t = node.first; t < node.first + node.count; ++t) sum += weighted_normals[t];
-            } else {
-                sum = node_normal_sums[node.first] + node_normal_sums[node.first + 1];
-            }
-        }
-    });
-}
 
 const std::vector<NormalBox>& AabbTree::Impl::bound_normals() {
     std::call_once(normals_bounded, [this] {
@@ -387,13 +356,41 @@ void AabbTree::triangles_within(const Eigen::Vector3d& q, double r, std::vector<
     }
 }
 
-AabbTree::BallNormalSums AabbTree::area_weighted_normals_in_ball(const Eigen::Vector3d& q, double r,
-                                                                const FacingWith& facing) const {
+AabbTree::NormalSums AabbTree::normal_sums() const {
+    NormalSums out;
+    const auto& ids = impl_->ids;
+    const auto& nodes = impl_->nodes;
+    const auto nt = static_cast<int32_t>(ids.size());
+    out.normals.resize(ids.size());
+    out.weighted.resize(ids.size());
+#pragma omp parallel for schedule(static) if (nt >= kParallelSize)
+    for (int32_t t = 0; t < nt; ++t) {
+        const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
+        out.normals[t] = impl_->normals[ids[t]];
+        out.weighted[t] = triangle_area(c[0], c[1], c[2]) * impl_->normals[ids[t]];
+    }
+    out.nodes.assign(nodes.size(), Eigen::Vector3d::Zero());
+    // Children come after their parent (Builder), so one backward pass sums every node.
+    for (size_t i = nodes.size(); i-- > 0;) {
+        const Node& node = nodes[i];
+        Eigen::Vector3d& sum = out.nodes[i];
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t) sum += out.weighted[t];
+        } else {
+            sum = out.nodes[node.first] + out.nodes[node.first + 1];
+        }
+    }
+    return out;
+}
+
+AabbTree::BallNormalSums AabbTree::area_weighted_normals_in_ball(const NormalSums& normal_sums, const Eigen::Vector3d& q,
+                                                                double r, const FacingWith& facing) const {
     BallNormalSums sums{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     const auto& nodes = impl_->nodes;
     if (nodes.empty() || !(r > 0.0)) return sums;
+    if (normal_sums.nodes.size() != nodes.size())
+        throw InvalidInput("AABB tree: normal sums made for another tree");
     const NormalBox* normal_boxes = impl_->bound_normals().data();
-    impl_->sum_normals();
     const double r2 = r * r;
     const double inside_d2 = r2 * (1.0 - 1e-9); // as in triangles_within
     // The range of n.dot(direction) over a node's box of normals: the lesser and the greater end's
@@ -419,20 +416,20 @@ AabbTree::BallNormalSums AabbTree::area_weighted_normals_in_ball(const Eigen::Ve
             // All of it in the ball: its sum goes whole to one side if all its normals do.
             const auto [least, most] = facing_range(normal_boxes[index]);
             if (least >= facing.min_dot || most < facing.min_dot) {
-                (least >= facing.min_dot ? sums.facing : sums.against) += impl_->node_normal_sums[index];
+                (least >= facing.min_dot ? sums.facing : sums.against) += normal_sums.nodes[index];
                 continue;
             }
         }
         if (node.count > 0) {
             for (int32_t t = node.first; t < node.first + node.count; ++t) {
                 if (!(box_squared_distance(impl_->boxes[t], q) < r2)) continue;
-                const Eigen::Vector3d& n = impl_->ordered_normals[t];
+                const Eigen::Vector3d& n = normal_sums.normals[t];
                 Eigen::Vector3d& sum = n.dot(facing.direction) >= facing.min_dot ? sums.facing : sums.against;
                 // The ball is convex: a triangle whose corners are inside is wholly inside.
                 const Eigen::Vector3d* c = &impl_->corners[3 * static_cast<size_t>(t)];
                 if ((c[0] - q).squaredNorm() < inside_d2 && (c[1] - q).squaredNorm() < inside_d2 &&
                     (c[2] - q).squaredNorm() < inside_d2) {
-                    sum += impl_->weighted_normals[t];
+                    sum += normal_sums.weighted[t];
                     continue;
                 }
                 // Zero for a triangle the ball misses.

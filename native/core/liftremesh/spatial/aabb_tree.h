@@ -76,11 +76,21 @@ public:
         Eigen::Vector3d facing, against;
     };
 
-    //! Both sums. A triangle wholly inside the ball weighs its whole area, and a subtree wholly
-    //! inside whose normals all fall on one side adds a sum kept per node: only the triangles
-    //! crossing the sphere are clipped to it (triangle_ball_intersection_area). The terms are
-    //! added in the tree's order, the same on any number of threads. Thread-safe (const).
-    BallNormalSums area_weighted_normals_in_ball(const Eigen::Vector3d& q, double r, const FacingWith& facing) const;
+    //! What the ball sums add up, in the tree's order: per triangle its unit normal and its area
+    //! times it, per node the latter's sum over its triangles. About 80 bytes a triangle, so
+    //! made by the caller for a run of queries and dropped after it.
+    struct NormalSums {
+        std::vector<Eigen::Vector3d> normals, weighted, nodes;
+    };
+    NormalSums normal_sums() const;
+
+    //! Both sums, from `normal_sums` (this tree's). A triangle wholly inside the ball weighs its
+    //! whole area, and a subtree wholly inside whose normals all fall on one side adds its node's
+    //! sum: only the triangles crossing the sphere are clipped to it
+    //! (triangle_ball_intersection_area). The terms are added in the tree's order, the same on
+    //! any number of threads. Thread-safe (const).
+    BallNormalSums area_weighted_normals_in_ball(const NormalSums& normal_sums, const Eigen::Vector3d& q, double r,
+                                                 const FacingWith& facing) const;
 
     //! Appends to `out` the triangles whose bounding boxes meet the closed box [lo, hi], in the
     //! order the tree holds them. Thread-safe (const).
