@@ -139,6 +139,32 @@ TEST(Geometry, BallIntersectionAreaAgreesWithWedgeSums) {
     EXPECT_LT(worst, 1e-12) << "largest difference, relative to the larger of triangle and disk";
 }
 
+// What the eta-ball normals clip most (Section 5.2.1): triangles far smaller than the ball, across
+// its rim, where the arc inside each is a small angle (the one the clipping takes from a series
+// rather than atan2). Compared with the wedge sums relative to the triangle's own area.
+TEST(Geometry, BallIntersectionAreaOfSmallTrianglesAcrossTheRim) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    auto random_direction = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized(); };
+    const Eigen::Vector3d o(0.3, -0.2, 0.1);
+    const double r = 0.02;
+    double worst = 0.0;
+    long crossing = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const double size = r * (0.05 + 0.15 * std::abs(unit(rng)));
+        const Eigen::Vector3d a = o + (r + size * unit(rng)) * random_direction();
+        const Eigen::Vector3d b = a + size * random_direction(), c = a + size * random_direction();
+        const double area = triangle_area(a, b, c);
+        if (!(area > 0.05 * size * size)) continue;
+        const double fast = triangle_ball_intersection_area(o, r, a, b, c);
+        const double plain = wedge_sum_ball_area(o, r, a, b, c);
+        worst = std::max(worst, std::abs(fast - plain) / area);
+        if (fast > 0.0 && fast < area) ++crossing;
+    }
+    EXPECT_GT(crossing, 1000);
+    EXPECT_LT(worst, 1e-12) << "largest difference, relative to the triangle's area";
+}
+
 // The disk wholly inside the triangle, the triangle wholly inside the ball, and a disk round a
 // corner of the triangle, a quarter of it inside a right angle, from a ball centred off the
 // plane over that corner, and half a disk about a point of an edge, as at a T-junction: in both
