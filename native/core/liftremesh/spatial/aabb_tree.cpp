@@ -165,8 +165,8 @@ struct AabbTree::Impl {
     std::vector<int32_t> ids;             //!< input triangle index, in tree order
     std::vector<Eigen::Vector3d> normals; //!< unit normal per input triangle, in input order
     //! Per node, a box holding its triangles' normals, in floats rounded outwards (half the
-    //! memory of doubles; the bound stays safe): made by the first query that needs them, as
-    //! only the thin-wall search does (bound_normals).
+    //! memory of doubles; the bound stays safe): made by the first query that needs them, the
+    //! ball sums or the thin-wall search (bound_normals), and kept as long as the tree.
     std::vector<NormalBox> normal_boxes;
     std::once_flag normals_bounded;
     const std::vector<NormalBox>& bound_normals();
