@@ -1,5 +1,6 @@
 #include "liftremesh/edit/acute_creases.h"
 
+#include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/geometry.h"
 
 #include <algorithm>
@@ -7,38 +8,9 @@
 
 namespace liftremesh {
 
-AcuteCreases::AcuteCreases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing,
-                           double min_length) {
-    const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
-    const EdgeUses edges = edge_uses(input.triangles);
-    std::vector<std::pair<int32_t, int32_t>> found;
-    for (long e = 0; e < edges.size(); ++e) {
-        // Two triangles using the edge in opposite directions: a consistently oriented pair.
-        if (edges.count(e) != 2) continue;
-        const int32_t s = edges.uses.begin(e)[0], t = edges.uses.begin(e)[1];
-        if (runs_forward(input.triangles, s) == runs_forward(input.triangles, t)) continue;
-        const Eigen::Vector3d n1 = input_tree.triangle_normal(s / 3), n2 = input_tree.triangle_normal(t / 3);
-        if (!(n1.squaredNorm() > 0.0 && n2.squaredNorm() > 0.0) || !(n1.dot(n2) < cos_turn)) continue;
-        found.emplace_back(edges.a[e], edges.b[e]);
-    }
-    // The creases as chains of edges joined at their vertices, each chain's length in all: a chain
-    // shorter than min_length is a scan's noise or a facet's slip, not a feature of the part.
-    std::unordered_map<int32_t, int32_t> parent;
-    auto root = [&parent](int32_t v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (const auto& [a, b] : found) {
-        parent.emplace(a, a);
-        parent.emplace(b, b);
-        parent[root(a)] = root(b);
-    }
-    auto length = [&input](int32_t a, int32_t b) { return (input.points.row(a) - input.points.row(b)).norm(); };
-    std::unordered_map<int32_t, double> chain_length;
-    for (const auto& [a, b] : found) chain_length[root(a)] += length(a, b);
+AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacing, double min_length) {
     std::vector<Eigen::Vector3d> samples;
-    for (const auto& [a, b] : found) {
-        if (chain_length[root(a)] < min_length) continue;
+    for (const auto& [a, b, left, right, turn] : crease_edges(input, min_turn_deg, min_length)) {
         const Eigen::Vector3d pa = input.points.row(a).transpose(), pb = input.points.row(b).transpose();
         ++degree_[a];
         ++degree_[b];

@@ -7,7 +7,6 @@
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/aabb_tree.h"
 #include "liftremesh/spatial/neighbor_search.h"
 
 #include <optional>
@@ -19,11 +18,10 @@ namespace liftremesh {
 
 class AcuteCreases {
 public:
-    //! The creases of `input` (input_tree is AabbTree(input)) turning by more than
-    //! `min_turn_deg`, sampled every `spacing` or closer for closest(); of those, the chains
-    //! (crease edges joined at their ends) at least `min_length` long in all.
-    AcuteCreases(const Mesh& input, const AabbTree& input_tree, double min_turn_deg, double spacing,
-                 double min_length = 0.0);
+    //! The creases of `input` turning by more than `min_turn_deg` (crease_edges), sampled every
+    //! `spacing` or closer for closest(); of those, the chains (crease edges joined at their
+    //! ends) at least `min_length` long in all.
+    AcuteCreases(const Mesh& input, double min_turn_deg, double spacing, double min_length = 0.0);
 
     //! The number of crease edges.
     long size() const { return static_cast<long>(segments_.size()); }

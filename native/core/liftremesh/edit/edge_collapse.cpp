@@ -314,7 +314,7 @@ FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& reference, co
     for (const auto& [a, b] : candidates) spacing = std::max(spacing, (position(mesh, a) - position(mesh, b)).norm());
     if (input.points.rows() > 0)
         spacing = std::max(spacing, 1e-3 * (input.points.colwise().maxCoeff() - input.points.colwise().minCoeff()).norm());
-    const AcuteCreases knives(input, input_tree, params.knife_turn_deg, spacing);
+    const AcuteCreases knives(input, params.knife_turn_deg, spacing);
     Collapser collapser(mesh);
     for (const auto& [a, b] : candidates) {
         const auto q = collapser.quad(a, b); // as the collapses before this one left it

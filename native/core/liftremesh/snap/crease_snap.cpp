@@ -182,7 +182,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
                            "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
     CreaseSnapStats stats;
-    const AcuteCreases creases(input, input_tree, params.min_turn_deg, 0.5 * params.radius, params.min_length);
+    const AcuteCreases creases(input, params.min_turn_deg, 0.5 * params.radius, params.min_length);
     stats.creases = creases.size();
     if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
     Snapper snapper(mesh, input_tree, params);
