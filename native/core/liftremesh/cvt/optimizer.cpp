@@ -43,6 +43,7 @@ struct Problem {
     // condition number falls back to what a uniform density gives, and the iterations converge
     // on the small cells as on the large ones.
     Eigen::VectorXd scale;
+    long fixed = 0; // the first sites, held where they are: their gradient is zero
 };
 
 lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const int n,
@@ -52,6 +53,9 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
         if (p.scale.size() > 0) p.sites.array().colwise() /= p.scale.array();
         const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, p.cache);
+        // A zero gradient keeps a site still: L-BFGS's steps are sums of gradients and of past
+        // steps, all zero in its coordinates.
+        p.gradient.topRows(p.fixed).setZero();
         if (p.scale.size() > 0) p.gradient.array().colwise() /= p.scale.array();
         std::copy(p.gradient.data(), p.gradient.data() + n, g);
         if (p.evaluations++ == 0) p.first_energy = f; // libLBFGS evaluates the start point first
@@ -125,7 +129,7 @@ int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
 } // namespace
 
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
-                              int threads, const ProgressCallback& progress, RvdCache* cache) {
+                              int threads, const ProgressCallback& progress, RvdCache* cache, const HeldSites& held) {
     OptimizeResult result;
     RvdCache own;
     const Schedule schedule = sigma > 1.0 ? two_phase_schedule(iterations) : Schedule{iterations, 0};
@@ -136,6 +140,10 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
     problem.rows = sites.rows();
     problem.cols = sites.cols();
     problem.progress = &progress;
+    if (held.count < 0 || held.count > sites.rows() || !(held.reseat_after >= 0.0 && held.reseat_after <= 1.0))
+        throw InvalidInput("optimize_sites: the held sites must be between 0 and the number of sites, and the "
+                           "reseating between 0 and 1 of the iterations");
+    problem.fixed = held.count;
     problem.cache = cache ? cache : &own;
     problem.iteration_offset = 0;
     problem.total = iterations;
@@ -145,8 +153,12 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
         problem.scale = Eigen::VectorXd::Ones(sites.rows());
     // Phase 1 (sigma = 1), then phase 2 (sigma) (Section 6.2.2). A phase whose line search
     // fails early is restarted (fresh L-BFGS memory) while it still makes progress.
-    const std::pair<double, int> phases[2] = {{1.0, schedule.plain}, {sigma, schedule.feature}};
-    for (const auto& [phase_sigma, budget] : phases) {
+    // The reseating, if any, splits the first phase in two.
+    const int reseat_at = held.reseat ? std::min(schedule.plain, static_cast<int>(std::lround(held.reseat_after * iterations))) : 0;
+    const std::pair<double, int> phases[3] = {{1.0, reseat_at}, {1.0, schedule.plain - reseat_at}, {sigma, schedule.feature}};
+    for (int phase = 0; phase < 3; ++phase) {
+        const auto& [phase_sigma, budget] = phases[phase];
+        if (phase == 1 && held.reseat && held.reseat(sites) > 0) *problem.cache = RvdCache{}; // lists of other sites
         problem.sigma = phase_sigma;
         int left = budget;
         while (left > 0) {

@@ -5,6 +5,8 @@
 #include "liftremesh/cvt/rvd.h"
 #include "liftremesh/progress.h"
 
+#include <functional>
+
 namespace liftremesh {
 
 struct OptimizeResult {
@@ -26,6 +28,16 @@ Schedule two_phase_schedule(int iterations);
 //! the sites by their cells' masses (optimizer.cpp).
 constexpr double kPreconditionContrast = 16.0;
 
+//! Sites held still through the optimisation, and a reseating of the free ones (crease_sites.h).
+struct HeldSites {
+    long count = 0; //!< the first `count` sites stay where they are (0 <= count <= #S)
+    //! If set, called once, after `reseat_after` of the iterations (in the phase with sigma = 1),
+    //! with the sites, which it may change from row `count` on (not their number); returns how many
+    //! it changed. The L-BFGS memory starts afresh after it.
+    std::function<long(LiftedPoints&)> reseat;
+    double reseat_after = 0.3; //!< a fraction of the iterations, in [0, 1]
+};
+
 //! Moves `sites` (#S by d) to a local minimum of the objective (Eq. 25) by L-BFGS, Algorithm 3
 //! lines 6-9. With sigma == 1 the whole budget is one phase. `progress` (may be empty) is called
 //! after each iteration; returning false throws Cancelled. A line search that fails (the
@@ -33,8 +45,10 @@ constexpr double kPreconditionContrast = 16.0;
 //! `cache` (may be null) is the diagram's RvdCache the evaluations use: given, it is left with
 //! the lists and seeds of the last diagram, which the restricted Delaunay triangulation of the
 //! result can start from. Where the weights vary by more than kPreconditionContrast, the
-//! sites are preconditioned by their cells' masses (optimizer.cpp).
+//! sites are preconditioned by their cells' masses (optimizer.cpp). `held`: sites that do not
+//! move, and a reseating of the others (see HeldSites); InvalidInput if out of range.
 OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites, double sigma, int iterations,
-                              int threads, const ProgressCallback& progress = {}, RvdCache* cache = nullptr);
+                              int threads, const ProgressCallback& progress = {}, RvdCache* cache = nullptr,
+                              const HeldSites& held = {});
 
 } // namespace liftremesh
