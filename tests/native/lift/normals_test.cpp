@@ -1,3 +1,4 @@
+#include "liftremesh/exceptions.h"
 #include "liftremesh/lift/density.h"
 #include "liftremesh/lift/normals.h"
 #include "liftremesh/mesh/geometry.h"
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <tuple>
 
 using namespace liftremesh;
 
@@ -180,6 +183,27 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, NormalsOnSharedMesh,
                                            "pmp_fandisk.off", "gmsh_object.stl", "pmp_bunny.off", "igl_beetle.off",
                                            "igl_truck.obj"),
                          test::mesh_name);
+
+// The creases over balls (Section 5.2.1's averaging on each side): a cube's edges turn by 90
+// degrees over a ball a fifth of the edge wide as across their edges, and are all kept; a sphere
+// whose vertices are moved radially by up to 2% at random has hundreds of facet edges turning by
+// more than 30 degrees, and none turns so over the same ball.
+TEST(Normals, CreasesOverBallsKeepACubesEdgesAndNotASpheresNoise) {
+    const Mesh cube = test::make_cube(0.5, 6);
+    const std::vector<CreaseEdge> edges = crease_edges(cube, 30.0);
+    const std::vector<CreaseEdge> kept = creases_over_balls(cube, AabbTree(cube), edges, 0.2, 30.0);
+    ASSERT_EQ(kept.size(), edges.size());
+    for (size_t k = 0; k < kept.size(); ++k) EXPECT_EQ(std::tie(kept[k].a, kept[k].b), std::tie(edges[k].a, edges[k].b));
+
+    Mesh sphere = test::make_icosphere(4);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> noise(-0.02, 0.02);
+    for (Eigen::Index v = 0; v < sphere.points.rows(); ++v) sphere.points.row(v) *= 1.0 + noise(rng);
+    const std::vector<CreaseEdge> facets = crease_edges(sphere, 30.0);
+    EXPECT_GT(facets.size(), 500u);
+    EXPECT_TRUE(creases_over_balls(sphere, AabbTree(sphere), facets, 0.2, 30.0).empty());
+    EXPECT_THROW(creases_over_balls(cube, AabbTree(cube), edges, 0.0, 30.0), InvalidInput);
+}
 
 TEST(Normals, LiftingAppendsScaledNormals) {
     const Mesh m = test::make_icosphere(1);

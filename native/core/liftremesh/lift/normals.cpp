@@ -1,5 +1,6 @@
 #include "liftremesh/lift/normals.h"
 
+#include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/spatial/aabb_tree.h"
@@ -128,6 +129,42 @@ LiftedPoints lift(const Points& points, const Points& normals, const Eigen::Vect
     LiftedPoints out(points.rows(), 6);
     out.leftCols(3) = points;
     out.rightCols(3) = normals.array().colwise() * nu.array(); // Eq. 12, nu per vertex
+    return out;
+}
+
+std::vector<CreaseEdge> creases_over_balls(const Mesh& mesh, const AabbTree& tree, const std::vector<CreaseEdge>& creases,
+                                           double eta, double min_turn_deg) {
+    if (!(eta > 0.0) || !std::isfinite(eta)) throw InvalidInput("creases_over_balls: eta must be positive and finite");
+    const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
+    auto corner = [&mesh](int32_t f, int j) { return Eigen::Vector3d(mesh.points.row(mesh.triangles(f, j)).transpose()); };
+    auto centroid = [&](int32_t f) -> Eigen::Vector3d { return (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0; };
+    std::vector<char> keep(creases.size(), 0);
+#pragma omp parallel
+    {
+        std::vector<int32_t> met;
+#pragma omp for schedule(dynamic, 64)
+        for (long k = 0; k < static_cast<long>(creases.size()); ++k) {
+            const CreaseEdge& e = creases[static_cast<size_t>(k)];
+            const Eigen::Vector3d mid = 0.5 * (mesh.points.row(e.a) + mesh.points.row(e.b)).transpose();
+            // The plane bisecting the crease: normal n_left - n_right, through its edge.
+            const Eigen::Vector3d across = tree.triangle_normal(e.left) - tree.triangle_normal(e.right);
+            const double left_side = (centroid(e.left) - mid).dot(across);
+            Eigen::Vector3d sums[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+            met.clear();
+            tree.triangles_within(mid, eta, met);
+            for (int32_t f : met) {
+                const double side = (centroid(f) - mid).dot(across);
+                if (side == 0.0) continue;
+                const double area = triangle_ball_intersection_area(mid, eta, corner(f, 0), corner(f, 1), corner(f, 2));
+                sums[(side > 0.0) == (left_side > 0.0) ? 0 : 1] += area * tree.triangle_normal(f);
+            }
+            const double n0 = sums[0].norm(), n1 = sums[1].norm();
+            keep[static_cast<size_t>(k)] = n0 > 0.0 && n1 > 0.0 && sums[0].dot(sums[1]) < cos_turn * n0 * n1;
+        }
+    }
+    std::vector<CreaseEdge> out;
+    for (size_t k = 0; k < creases.size(); ++k)
+        if (keep[k]) out.push_back(creases[k]);
     return out;
 }
 

@@ -2,8 +2,11 @@
 // surface to R^6 (Eq. 12).
 #pragma once
 
+#include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/spatial/aabb_tree.h"
+
+#include <vector>
 
 namespace liftremesh {
 
@@ -23,6 +26,16 @@ Points vertex_normals(const Mesh& mesh, double eta);
 //! similar copy of the mesh (scaled by s, moved) are those of the mesh at radius eta / s, to
 //! rounding, so a tree over the input serves its unit-ball copy.
 Points vertex_normals(const Mesh& mesh, const AabbTree& tree, double eta);
+
+//! Of `creases` (crease_edges() of `mesh`; `tree` over mesh's triangles), those that still turn
+//! by more than `min_turn_deg` with each side's normal averaged over the ball of radius `eta`
+//! about the edge's midpoint as in Section 5.2.1: the normals of the triangles the ball meets,
+//! weighted by the area inside it, on the side of the plane bisecting the crease where its own
+//! triangle lies. A CAD part's crease turns as much over the ball as across its edge; a scan's
+//! noise turns fast from one facet to the next and little over a ball, and a facet's slip in a
+//! smooth surface by about its own angle spread over the ball.
+std::vector<CreaseEdge> creases_over_balls(const Mesh& mesh, const AabbTree& tree, const std::vector<CreaseEdge>& creases,
+                                           double eta, double min_turn_deg);
 
 //! #V by d lifted points x (+) nu n (Eq. 12): d = 6, or d = 3 (the plain surface) when nu == 0.
 LiftedPoints lift(const Points& points, const Points& normals, double nu);
