@@ -95,6 +95,7 @@ FIELDS = {
     "evaluations": "objective evaluations (restricted Voronoi diagrams computed), line searches included",
     "energy_initial": "objective at the random start, with the first phase's sigma (summed over parts)",
     "energy_final": "objective at the last iterate, with its phase's sigma (summed over parts)",
+    "crease_sites": "sites held still on the creases over the feature angle and on their corners (hold_creases; 0 when off)",
     "sites_split": "sites whose restricted cell came in pieces that do not touch, a vertex each",
     "holes_filled": "holes of the triangulation filled (those not along the input's own boundary)",
     "triangles_removed": "triangles removed by the manifold repair, and flaps beyond an open input's boundary",

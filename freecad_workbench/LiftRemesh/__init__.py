@@ -5,7 +5,7 @@
     features = LiftRemesh.remesh_objects(doc, [doc.Box], edge_length=2.0)
 
 Parameters (all optional, by keyword): vertices or edge_length, mode ("isotropic" or
-"anisotropic"), sigma, feature_angle, local_sizing, gradation, min_edge, max_edge, delta, nu, eta,
+"anisotropic"), sigma, feature_angle, hold_creases, local_sizing, gradation, min_edge, max_edge, delta, nu, eta,
 iterations, seed, threads, fill_holes, and for
 Part shapes linear_deflection (mm) and angular_deflection (degrees) of the tessellation. `defaults(mode)`
 lists them with their values; the command-line tool has the same names and defaults.

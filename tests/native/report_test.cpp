@@ -43,7 +43,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     const std::string json = to_json(sample_report());
     for (const char* key :
          {"input", "output", "input_duplicates_removed", "input_degenerate_removed", "input_facets_turned", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
-          "evaluations", "energy_initial", "energy_final", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
+          "evaluations", "energy_initial", "energy_final", "crease_sites", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
           "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "stray_components_removed", "stray_inward_removed", "cracks_closed",
           "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;

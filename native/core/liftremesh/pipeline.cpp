@@ -1,5 +1,6 @@
 #include "liftremesh/pipeline.h"
 
+#include "liftremesh/cvt/crease_sites.h"
 #include "liftremesh/cvt/optimizer.h"
 #include "liftremesh/cvt/rdt.h"
 #include "liftremesh/cvt/rvd.h"
@@ -13,6 +14,7 @@
 #include "liftremesh/lift/thin_walls.h"
 #include "liftremesh/measure/quality.h"
 #include "liftremesh/mesh/components.h"
+#include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/mesh/input_cleaning.h"
 #include "liftremesh/mesh/mesh_io.h"
@@ -30,6 +32,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <memory>
 #include <sstream>
 #include <cmath>
@@ -302,11 +305,37 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
                   double spacing, StageClock& clock, const ProgressCallback& progress, RemeshReport& report) {
     const long sites_wanted = piece.sites;
 
+    const StepSettings steps = step_settings(spacing, to_unit.scale, sites_wanted);
+    const Reference reference{*piece.input, *piece.tree};
+
     clock.begin("optimize");
-    LiftedPoints sites = random_sites(piece.surface, sites_wanted, seed);
+    // With hold_creases, every crease over the feature angle and its corners get sites held
+    // still, the others are seeded at random off them and, where the optimisation leaves one
+    // crowding a crease, seeded again (crease_sites.h). At 180 degrees, none: the feature term.
+    std::optional<CreaseSites> creases;
+    if (params.hold_creases && params.feature_angle < 180.0)
+        creases.emplace(piece.surface,
+                        long_crease_chains(*piece.input,
+                                           creases_over_balls(*piece.input, *piece.tree, crease_edges(*piece.input, params.feature_angle),
+                                                              params.eta * to_unit.scale, params.feature_angle),
+                                           steps.feature_snap.min_length),
+                        sites_wanted);
+    const long pinned = creases ? creases->pinned().rows() : 0;
+    LiftedPoints sites(sites_wanted, piece.surface.dimension());
+    if (creases) {
+        sites.topRows(pinned) = creases->pinned();
+        sites.bottomRows(sites_wanted - pinned) = creases->free_sites(piece.surface, sites_wanted - pinned, seed);
+    } else {
+        sites = random_sites(piece.surface, sites_wanted, seed);
+    }
     RvdCache diagram; // the optimiser's neighbour lists and seeds, reused by the triangulation
+    HeldSites held;
+    held.count = pinned;
+    if (creases)
+        held.reseat = [&](LiftedPoints& s) { return creases->reseat_crowding_sites(piece.surface, s, pinned, seed + 1); };
     const OptimizeResult opt =
-        optimize_sites(piece.surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram);
+        optimize_sites(piece.surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram, held);
+    report.crease_sites += pinned;
     report.sites += sites.rows();
     report.iterations = std::max(report.iterations, opt.iterations);
     report.evaluations += opt.evaluations;
@@ -322,9 +351,6 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     if (out.triangles.rows() == 0)
         throw TopologyFailure("the restricted Delaunay triangulation is empty: too few vertices for this surface");
     clock.end();
-
-    const StepSettings steps = step_settings(spacing, to_unit.scale, sites_wanted);
-    const Reference reference{*piece.input, *piece.tree};
 
     // The triangulation made an oriented manifold without holes it should not have, in the unit
     // ball (repair/).
@@ -382,6 +408,7 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
     to.evaluations += run.evaluations;
     to.energy_initial += run.energy_initial;
     to.energy_final += run.energy_final;
+    to.crease_sites += run.crease_sites;
     to.sites_split += run.sites_split;
     to.holes_filled += run.holes_filled;
     to.triangles_removed += run.triangles_removed;

@@ -199,6 +199,7 @@ std::string to_json(const RemeshReport& report) {
                         {"evaluations", json_number(static_cast<long>(report.evaluations))},
                         {"energy_initial", json_number(report.energy_initial)},
                         {"energy_final", json_number(report.energy_final)},
+                        {"crease_sites", json_number(report.crease_sites)},
                         {"sites_split", json_number(report.sites_split)},
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},

@@ -46,22 +46,45 @@ TEST(Remesh, TorusGivesAClosedOrientedTorus) {
     EXPECT_GT(r.report.output.kappa_mean, 0.9);
 }
 
+namespace {
+// The cube of edge 1 (test::make_cube(0.5, 6)) and the farthest of its corners from the nearest
+// vertex of `out`.
+double worst_cube_corner(const Mesh& out) {
+    const double half = 0.5;
+    double worst = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner((c & 1 ? 1 : -1) * half, (c & 2 ? 1 : -1) * half, (c & 4 ? 1 : -1) * half);
+        worst = std::max(worst, distance_to_nearest_vertex(out, corner));
+    }
+    return worst;
+}
+} // namespace
+
 TEST(Remesh, CubeCornersAreKeptWithSigmaFiveAndNotWithSigmaOne) {
-    const double half = 0.5, edge = 2 * half;
-    const Mesh input = test::make_cube(half, 6);
-    auto worst_corner = [&](const Mesh& out) {
-        double worst = 0.0;
-        for (int c = 0; c < 8; ++c) {
-            const Eigen::Vector3d corner((c & 1 ? 1 : -1) * half, (c & 2 ? 1 : -1) * half, (c & 4 ? 1 : -1) * half);
-            worst = std::max(worst, distance_to_nearest_vertex(out, corner));
-        }
-        return worst;
-    };
+    const Mesh input = test::make_cube(0.5, 6);
     const RemeshResult sharp = remesh(input, params_with(1200, 5.0));
     const RemeshResult smooth = remesh(input, params_with(1200, 1.0));
     EXPECT_TRUE(test::topology(sharp.mesh).closed_oriented_manifold());
-    EXPECT_LE(worst_corner(sharp.mesh), 0.01 * edge);
-    EXPECT_GT(worst_corner(smooth.mesh), 0.01 * edge); // without the feature term corners are cut
+    EXPECT_LE(worst_cube_corner(sharp.mesh), 0.01);
+    EXPECT_GT(worst_cube_corner(smooth.mesh), 0.01); // without the feature term corners are cut
+}
+
+// With sites held on the creases and corners (hold_creases, crease_sites.h) the corners are
+// vertices even without the feature term, and every site held is counted.
+TEST(Remesh, CubeCornersAreVerticesWithHeldCreasesAlone) {
+    const Mesh input = test::make_cube(0.5, 6);
+    RemeshParams params = params_with(1200, 1.0);
+    params.hold_creases = true;
+    const RemeshResult r = remesh(input, params);
+    EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold());
+    EXPECT_LE(worst_cube_corner(r.mesh), 1e-9);
+    // 8 corners, and each edge cut at about the spacing h of 1200 vertices on an area of 6 (the
+    // density rho^delta makes it a little shorter along the edges).
+    const double h = std::sqrt(2.0 * 6.0 / (std::sqrt(3.0) * 1200.0));
+    EXPECT_GE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::floor(1.0 / h - 1.0)));
+    EXPECT_LE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::ceil(1.5 / h)));
+    EXPECT_GE(r.report.output.kappa_min, 0.45);
+    EXPECT_EQ(remesh(input, params_with(1200, 1.0)).report.crease_sites, 0); // off by default
 }
 
 TEST(Optimizer, ObjectiveDecreasesEveryIteration) {
