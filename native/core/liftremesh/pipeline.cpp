@@ -32,8 +32,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <cmath>
 

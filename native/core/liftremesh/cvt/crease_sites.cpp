@@ -142,7 +142,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     for (size_t r = 0; r < rows.size(); ++r) pinned_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
     if (pinned_.rows() == 0) return;
 
-    // Samples along the crease edges for drop_crowding_sites: a point within r of an edge has a
+    // Samples along the crease edges for crowds(): a point within r of an edge has a
     // sample within r + step.
     sample_step_ = 0.25 * smallest;
     std::vector<Eigen::Vector3d> samples;

@@ -1,4 +1,4 @@
-// Sites pinned on the input's creases (issue 35): one on each corner of the creases, and along
+// Sites held on the input's creases (issue 35): one on each corner of the creases, and along
 // each chain of crease edges between two corners (or round a closed loop) as many as the local
 // spacing fits, evenly. Held still through the optimisation, they become vertices exactly on the
 // creases and their corners, and the free sites' Voronoi cells settle round them (Algorithm 3 with
@@ -43,8 +43,8 @@ struct CreaseSitesParams {
 class CreaseSites {
 public:
     //! For `sites` sites in all on `surface`, whose first vertices are those `creases` (the crease
-    //! edges, as vertex pairs: crease_edges() in mesh/creases.h) index. Throws InvalidInput for
-    //! an index out of range.
+    //! edges: crease_edges() in mesh/creases.h) index. Throws InvalidInput for an index out of
+    //! range.
     CreaseSites(const LiftedSurface& surface, const std::vector<CreaseEdge>& creases, long sites,
                 const CreaseSitesParams& params = {});
 
