@@ -78,7 +78,7 @@ class CreaseTest(unittest.TestCase):
         self.check_part("thread", recall=0.8, corner_h=0.2, hausdorff=0.006)
 
     def test_held_thread_as_close_to_its_creases_as_its_input_corners_on_vertices(self):
-        """The closest met with the creases held: every corner on a vertex, spurious creases under
+        """The closest met with the creases held: corners within 0.1 h, spurious creases under
         0.02, and the creases found as often as in the input itself (the STL export's chords of the
         helices are up to 0.1 mm, 0.28 h, off the B-rep: no vertex placed on the input can do
         better). The Hausdorff distance is the run-out's, 0.49-0.81% over seeds 1-7 with or

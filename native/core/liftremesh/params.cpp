@@ -171,11 +171,11 @@ const std::vector<ParameterInfo>& parameter_table() {
                    "triangle edges along them and a vertex on every corner where they meet, above 0 to 180: 30 "
                    "keeps the edges of chamfers and steps, 180 leaves sharp edges to Sensitivity alone."),
         Row("hold_creases", K::Flag, &P::hold_creases)
-            .text("yes|no", "", "vertices held on every crease over the feature angle and its corners from the start")
+            .text("yes|no", "", "vertices held on the creases over the feature angle and their corners from the start")
             .words("Hold creases",
-                   "Put vertices on the part's sharp edges and corners (those the feature angle finds) from the "
-                   "start, so that the triangles along them are as well shaped as the others and every corner "
-                   "is a vertex."),
+                   "Put vertices on the part's sharp edges and corners (those the feature angle finds, but edges "
+                   "closer together than half an edge length) from the start, so that the triangles along them "
+                   "are as well shaped as the others."),
         Row("local_sizing", K::Flag, &P::local_sizing)
             .text("yes|no", "", "smaller edges where the part is thinner than the edge length or bends tightly")
             .words("Local sizing",

@@ -320,22 +320,22 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
                                                               params.eta * to_unit.scale, params.feature_angle),
                                            steps.feature_snap.min_length),
                         sites_wanted);
-    const long pinned = creases ? creases->pinned().rows() : 0;
+    const long held_count = creases ? creases->held().rows() : 0;
     LiftedPoints sites(sites_wanted, piece.surface.dimension());
     if (creases) {
-        sites.topRows(pinned) = creases->pinned();
-        sites.bottomRows(sites_wanted - pinned) = creases->free_sites(piece.surface, sites_wanted - pinned, seed);
+        sites.topRows(held_count) = creases->held();
+        sites.bottomRows(sites_wanted - held_count) = creases->free_sites(piece.surface, sites_wanted - held_count, seed);
     } else {
         sites = random_sites(piece.surface, sites_wanted, seed);
     }
     RvdCache diagram; // the optimiser's neighbour lists and seeds, reused by the triangulation
     HeldSites held;
-    held.count = pinned;
-    if (creases)
-        held.reseat = [&](LiftedPoints& s) { return creases->reseat_crowding_sites(piece.surface, s, pinned, seed + 1); };
+    held.count = held_count;
+    if (held_count > 0)
+        held.reseat = [&](LiftedPoints& s) { return creases->reseat_crowding_sites(piece.surface, s, held_count, seed + 1); };
     const OptimizeResult opt =
         optimize_sites(piece.surface, sites, params.sigma, params.iterations, params.threads, progress, &diagram, held);
-    report.crease_sites += pinned;
+    report.crease_sites += held_count;
     report.sites += sites.rows();
     report.iterations = std::max(report.iterations, opt.iterations);
     report.evaluations += opt.evaluations;

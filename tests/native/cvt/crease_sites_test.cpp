@@ -46,13 +46,13 @@ TEST(CreaseSites, OnACubeAreItsCornersAndEvenlySpacedPointsOfItsEdges) {
     const Cube cube;
     const long sites = 1200;
     const CreaseSites creases(cube.surface, cube.creases, sites);
-    const LiftedPoints& pinned = creases.pinned();
+    const LiftedPoints& held = creases.held();
     const long per_edge = std::lround(1.0 / cube_spacing(sites)) - 1;
-    ASSERT_EQ(pinned.rows(), 8 + 12 * per_edge);
+    ASSERT_EQ(held.rows(), 8 + 12 * per_edge);
     for (int c = 0; c < 8; ++c)
-        for (int i = 0; i < 3; ++i) EXPECT_EQ(std::abs(pinned(c, i)), 0.5) << "corner " << c;
-    for (Eigen::Index k = 0; k < pinned.rows(); ++k) {
-        const Eigen::Vector3d p = pinned.row(k).leftCols<3>().transpose();
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(std::abs(held(c, i)), 0.5) << "corner " << c;
+    for (Eigen::Index k = 0; k < held.rows(); ++k) {
+        const Eigen::Vector3d p = held.row(k).leftCols<3>().transpose();
         EXPECT_LT(distance_to_cube_edges(p), 1e-12) << k;
         // Along its edge (the coordinate not at +-0.5), at a multiple of 1 / (per_edge + 1).
         for (int i = 0; i < 3; ++i)
@@ -63,13 +63,17 @@ TEST(CreaseSites, OnACubeAreItsCornersAndEvenlySpacedPointsOfItsEdges) {
     }
 }
 
-// Past the budget's share for creases, the corners alone; past it again, none.
+// Past the budget's share for creases, the corners alone, which keep no free site off the
+// creases; past it again, none.
 TEST(CreaseSites, ABudgetTooSmallForTheCreasesHoldsTheCornersOrNothing) {
     const Cube cube;
-    // 40 sites: h = 0.42, two sites an edge and 8 corners = 32, over a quarter; the corners are 8.
-    EXPECT_EQ(CreaseSites(cube.surface, cube.creases, 40).pinned().rows(), 8);
-    EXPECT_EQ(CreaseSites(cube.surface, cube.creases, 24).pinned().rows(), 0);
-    EXPECT_EQ(CreaseSites(cube.surface, {}, 1200).pinned().rows(), 0);
+    // 40 sites: h = 0.42, one site an edge (2 pieces) and the 8 corners, 20, are over a quarter
+    // of the budget (10); the corners alone are not. 24 sites: a quarter is 6, under 8 corners.
+    const CreaseSites corners(cube.surface, cube.creases, 40);
+    EXPECT_EQ(corners.held().rows(), 8);
+    EXPECT_EQ(corners.free_sites(cube.surface, 32, 3), random_sites(cube.surface, 32, 3));
+    EXPECT_EQ(CreaseSites(cube.surface, cube.creases, 24).held().rows(), 0);
+    EXPECT_EQ(CreaseSites(cube.surface, {}, 1200).held().rows(), 0);
 }
 
 // Two creases nearer than half the spacing cannot both have a row: the second is left out. On
@@ -90,13 +94,15 @@ TEST(CreaseSites, ACreaseNearerThanHalfTheSpacingToOneTakenGetsNoRow) {
     };
     CreaseSitesParams params;
     params.max_fraction = 1.0;
-    const long one = CreaseSites(surface, row(4), 16, params).pinned().rows();
+    const long one = CreaseSites(surface, row(4), 16, params).held().rows();
     EXPECT_EQ(one, 2 + std::lround(1.0 / spacing_of(1.0, 16)) - 1); // its two ends, and the row cut at the spacing
-    EXPECT_EQ(CreaseSites(surface, both(4, 5), 16, params).pinned().rows(), one);
-    EXPECT_EQ(CreaseSites(surface, both(4, 8), 16, params).pinned().rows(), 2 * one);
+    EXPECT_EQ(CreaseSites(surface, both(4, 5), 16, params).held().rows(), one);
+    EXPECT_EQ(CreaseSites(surface, both(4, 8), 16, params).held().rows(), 2 * one);
     std::vector<CreaseEdge> bad = row(4);
     bad.push_back({0, static_cast<int32_t>(square.points.rows()), -1, -1, 90.0});
     EXPECT_THROW(CreaseSites(surface, bad, 16, params), InvalidInput);
+    params.max_fraction = 1.5;
+    EXPECT_THROW(CreaseSites(surface, row(4), 16, params), InvalidInput);
 }
 
 // The free sites keep the clearance from every crease (at right angles: half the spacing), and
@@ -105,8 +111,8 @@ TEST(CreaseSites, FreeSitesKeepTheirClearanceFromTheCreases) {
     const Cube cube;
     const long sites = 1200;
     const CreaseSites creases(cube.surface, cube.creases, sites);
-    const LiftedPoints free = creases.free_sites(cube.surface, sites - creases.pinned().rows(), 5);
-    ASSERT_EQ(free.rows(), sites - creases.pinned().rows());
+    const LiftedPoints free = creases.free_sites(cube.surface, sites - creases.held().rows(), 5);
+    ASSERT_EQ(free.rows(), sites - creases.held().rows());
     const double clearance = 0.5 * cube_spacing(sites);
     for (Eigen::Index k = 0; k < free.rows(); ++k) {
         const Eigen::Vector3d p = free.row(k).leftCols<3>().transpose();

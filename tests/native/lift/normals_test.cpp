@@ -185,7 +185,7 @@ INSTANTIATE_TEST_SUITE_P(SharedMeshes, NormalsOnSharedMesh,
                          test::mesh_name);
 
 // The creases over balls (Section 5.2.1's averaging on each side): a cube's edges turn by 90
-// degrees over a ball a fifth of the edge wide as across their edges, and are all kept; a sphere
+// degrees over a ball of radius a fifth of the edge as across their edges, and are all kept; a sphere
 // whose vertices are moved radially by up to 2% at random has hundreds of facet edges turning by
 // more than 30 degrees, and none turns so over the same ball.
 TEST(Normals, CreasesOverBallsKeepACubesEdgesAndNotASpheresNoise) {
@@ -203,6 +203,9 @@ TEST(Normals, CreasesOverBallsKeepACubesEdgesAndNotASpheresNoise) {
     EXPECT_GT(facets.size(), 500u);
     EXPECT_TRUE(creases_over_balls(sphere, AabbTree(sphere), facets, 0.2, 30.0).empty());
     EXPECT_THROW(creases_over_balls(cube, AabbTree(cube), edges, 0.0, 30.0), InvalidInput);
+    std::vector<CreaseEdge> bad = edges;
+    bad[0].left = -1; // a crease given by hand without its triangles
+    EXPECT_THROW(creases_over_balls(cube, AabbTree(cube), bad, 0.2, 30.0), InvalidInput);
 }
 
 TEST(Normals, LiftingAppendsScaledNormals) {

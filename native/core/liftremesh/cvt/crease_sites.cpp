@@ -56,9 +56,13 @@ std::vector<std::vector<int32_t>> crease_chains(const std::map<int32_t, std::vec
 CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseEdge>& creases,
                          long sites, const CreaseSitesParams& params)
     : creases_(creases), xyz_(surface.points.leftCols<3>()), params_(params) {
+    if (!(params_.min_separation >= 0.0) || !(params_.max_fraction >= 0.0 && params_.max_fraction <= 1.0) ||
+        !(params_.clearance >= 0.0))
+        throw InvalidInput("crease_sites: the separation and clearance must not be negative, the fraction held "
+                           "must be between 0 and 1");
     const Eigen::Index nv = surface.points.rows();
     const int d = surface.dimension();
-    pinned_.resize(0, d);
+    held_.resize(0, d);
     std::map<int32_t, std::vector<int32_t>> next; // each crease vertex's neighbours along the creases
     for (const auto& [a, b, left, right, turn] : creases_) {
         if (a < 0 || b < 0 || a >= nv || b >= nv || a == b)
@@ -81,6 +85,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
         }
     }
     const double per_site = sampling_mass(surface) / static_cast<double>(sites);
+    if (!(per_site > 0.0) || !std::isfinite(per_site)) return; // no area to hold sites on
     spacing_ = Eigen::VectorXd::Zero(nv);
     double largest = 0.0, smallest = std::numeric_limits<double>::infinity();
     for (const auto& [v, out] : next) {
@@ -138,9 +143,10 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     std::vector<Eigen::Index> rows;
     for (size_t c = 0; c < last; ++c)
         if (taken[c]) rows.push_back(static_cast<Eigen::Index>(c));
-    pinned_.resize(static_cast<Eigen::Index>(rows.size()), d);
-    for (size_t r = 0; r < rows.size(); ++r) pinned_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
-    if (pinned_.rows() == 0) return;
+    held_.resize(static_cast<Eigen::Index>(rows.size()), d);
+    for (size_t r = 0; r < rows.size(); ++r) held_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
+    // Only rows on the creases keep free sites off them: with the corners alone, none.
+    if (held_.rows() == 0 || last == corners) return;
 
     // Samples along the crease edges for crowds(): a point within r of an edge has a
     // sample within r + step.
@@ -166,7 +172,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
 // The clearance over sin(alpha) for an interior angle alpha under 90 degrees (see the header),
 // at most twice the clearance (alpha = 30 degrees): 1 / sin(alpha) grows without bound on a
 // sharper wedge, and would empty a band round its knife edge of free sites, many spacings wide,
-// that the pinned row's triangles alone then span.
+// that the held row's triangles alone then span.
 double CreaseSites::clearance(double turn_deg) const {
     const double interior = std::clamp(180.0 - turn_deg, 30.0, 90.0) * M_PI / 180.0;
     return params_.clearance / std::sin(interior);

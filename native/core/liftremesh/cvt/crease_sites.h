@@ -27,15 +27,16 @@
 namespace liftremesh {
 
 struct CreaseSitesParams {
-    //! Candidates closer than this times their spacing to one taken before are dropped.
+    //! Candidates closer than this times their spacing to one taken before are dropped. Not
+    //! negative.
     double min_separation = 0.5;
-    //! At most this fraction of the sites is pinned: past it, the corners alone, and past it
-    //! again, none (a part whose creases the budget cannot follow).
+    //! At most this fraction of the sites is held: past it, the corners alone, and past it
+    //! again, none (a part whose creases the budget cannot follow). In [0, 1].
     double max_fraction = 0.25;
     //! Free sites closer than this times the spacing to a crease crowd it (free_sites,
     //! reseat_crowding_sites); to a crease whose faces meet at an interior angle alpha under 90
     //! degrees, closer than this over sin(alpha), at most twice this: a site there is nearer to
-    //! the other face than the clearance.
+    //! the other face than the clearance. Not negative.
     double clearance = 0.5;
 };
 
@@ -43,14 +44,15 @@ struct CreaseSitesParams {
 class CreaseSites {
 public:
     //! For `sites` sites in all on `surface`, whose first vertices are those `creases` (the crease
-    //! edges: crease_edges() in mesh/creases.h) index. Throws InvalidInput for an index out of
-    //! range.
+    //! edges: crease_edges() in mesh/creases.h) index. Throws InvalidInput for an index or a
+    //! parameter out of range.
     CreaseSites(const LiftedSurface& surface, const std::vector<CreaseEdge>& creases, long sites,
                 const CreaseSitesParams& params = {});
 
-    //! The pinned sites (rows, lifted like the surface's points): corners (vertices with other
-    //! than two crease edges) first, by vertex index, then the chains'.
-    const LiftedPoints& pinned() const { return pinned_; }
+    //! The held sites (rows, lifted like the surface's points): corners (vertices with other
+    //! than two crease edges) first, by vertex index, then the chains'. When only the corners
+    //! are held (the budget's cap), no free site is kept off the creases.
+    const LiftedPoints& held() const { return held_; }
 
     //! `count` sites drawn as random_sites(surface, count, seed) draws them, none of which crowds
     //! a crease (lies closer than the clearance times the spacing there to one, on the lifted
@@ -60,15 +62,15 @@ public:
 
     //! Replaces the rows of `sites` from `first` on that crowd a crease by free_sites; returns
     //! how many. A local minimum of the objective can leave a free site in a face narrower than
-    //! the spacing between two rows of pinned sites, or just off a row, where its cell parts two
-    //! pinned neighbours: their crease edge is then missing, and the triangles cut across.
+    //! the spacing between two rows of held sites, or just off a row, where its cell parts two
+    //! held neighbours: their crease edge is then missing, and the triangles cut across.
     long reseat_crowding_sites(const LiftedSurface& surface, LiftedPoints& sites, long first, std::uint64_t seed) const;
 
 private:
     std::vector<CreaseEdge> creases_;
     Points xyz_;                 // the surface's vertices in 3D
     Eigen::VectorXd spacing_;    // per vertex, the local spacing (0 where no crease passes)
-    LiftedPoints pinned_;
+    LiftedPoints held_;
     std::optional<KdTree> samples_; // points along the crease edges, at most a quarter spacing apart
     std::vector<int32_t> sample_edge_;
     std::vector<std::pair<Eigen::RowVectorXd, Eigen::RowVectorXd>> lifted_ends_; // per crease edge

@@ -43,7 +43,8 @@ struct Problem {
     // condition number falls back to what a uniform density gives, and the iterations converge
     // on the small cells as on the large ones.
     Eigen::VectorXd scale;
-    long fixed = 0; // the first sites, held where they are: their gradient is zero
+    long fixed = 0;          // the first sites, held where they are: their gradient is zero
+    LiftedPoints held_rows;  // their coordinates, restored exactly (the scaling may round them)
 };
 
 lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval_t* g, const int n,
@@ -52,6 +53,7 @@ lbfgsfloatval_t evaluate(void* instance, const lbfgsfloatval_t* x, lbfgsfloatval
     try {
         p.sites = Eigen::Map<const LiftedPoints>(x, p.rows, p.cols);
         if (p.scale.size() > 0) p.sites.array().colwise() /= p.scale.array();
+        p.sites.topRows(p.fixed) = p.held_rows;
         const double f = cvt_objective(*p.surface, p.sites, p.sigma, p.threads, p.gradient, p.cache);
         // A zero gradient keeps a site still: L-BFGS's steps are sums of gradients and of past
         // steps, all zero in its coordinates.
@@ -118,6 +120,7 @@ int run_phase(Problem& problem, LiftedPoints& sites, int iterations) {
     if (!problem.error && std::all_of(x, x + n, [](double v) { return std::isfinite(v); })) {
         std::copy(x, x + n, sites.data());
         if (problem.scale.size() > 0) sites.array().colwise() /= problem.scale.array();
+        sites.topRows(problem.fixed) = problem.held_rows;
     }
     lbfgs_free(x);
     if (problem.cancelled) throw Cancelled("remeshing was cancelled during the optimisation");
@@ -144,6 +147,7 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
         throw InvalidInput("optimize_sites: the held sites must be between 0 and the number of sites, and the "
                            "reseating between 0 and 1 of the iterations");
     problem.fixed = held.count;
+    problem.held_rows = sites.topRows(held.count);
     problem.cache = cache ? cache : &own;
     problem.iteration_offset = 0;
     problem.total = iterations;
@@ -158,7 +162,13 @@ OptimizeResult optimize_sites(const LiftedSurface& surface, LiftedPoints& sites,
     const std::pair<double, int> phases[3] = {{1.0, reseat_at}, {1.0, schedule.plain - reseat_at}, {sigma, schedule.feature}};
     for (int phase = 0; phase < 3; ++phase) {
         const auto& [phase_sigma, budget] = phases[phase];
-        if (phase == 1 && held.reseat && held.reseat(sites) > 0) *problem.cache = RvdCache{}; // lists of other sites
+        if (phase == 1 && held.reseat) {
+            const Eigen::Index rows = sites.rows(), cols = sites.cols();
+            const bool changed = held.reseat(sites) > 0;
+            if (sites.rows() != rows || sites.cols() != cols || sites.topRows(held.count) != problem.held_rows)
+                throw InvalidInput("optimize_sites: the reseating changed the number of sites or a held one");
+            if (changed) *problem.cache = RvdCache{}; // lists of other sites
+        }
         problem.sigma = phase_sigma;
         int left = budget;
         while (left > 0) {

@@ -135,6 +135,10 @@ LiftedPoints lift(const Points& points, const Points& normals, const Eigen::Vect
 std::vector<CreaseEdge> creases_over_balls(const Mesh& mesh, const AabbTree& tree, const std::vector<CreaseEdge>& creases,
                                            double eta, double min_turn_deg) {
     if (!(eta > 0.0) || !std::isfinite(eta)) throw InvalidInput("creases_over_balls: eta must be positive and finite");
+    for (const CreaseEdge& e : creases)
+        if (e.left < 0 || e.right < 0 || e.left >= mesh.triangles.rows() || e.right >= mesh.triangles.rows() ||
+            e.a < 0 || e.b < 0 || e.a >= mesh.points.rows() || e.b >= mesh.points.rows())
+            throw InvalidInput("creases_over_balls: a crease edge's vertex or triangle index is out of range");
     const double cos_turn = std::cos(min_turn_deg * M_PI / 180.0);
     auto corner = [&mesh](int32_t f, int j) { return Eigen::Vector3d(mesh.points.row(mesh.triangles(f, j)).transpose()); };
     auto centroid = [&](int32_t f) -> Eigen::Vector3d { return (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0; };
