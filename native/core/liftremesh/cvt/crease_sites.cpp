@@ -145,8 +145,10 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
         if (taken[c]) rows.push_back(static_cast<Eigen::Index>(c));
     held_.resize(static_cast<Eigen::Index>(rows.size()), d);
     for (size_t r = 0; r < rows.size(); ++r) held_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
-    // Only rows on the creases keep free sites off them: with the corners alone, none.
-    if (held_.rows() == 0 || last == corners) return;
+    // With the corners alone held (a part all creases, as a thread), the free sites are still
+    // kept off the creases: the snap after the triangulation (crease_snap.h) then finds the
+    // vertices next to a crease far enough from it that its moves keep their triangles whole.
+    if (held_.rows() == 0) return;
 
     // Samples along the crease edges for crowds(): a point within r of an edge has a
     // sample within r + step.

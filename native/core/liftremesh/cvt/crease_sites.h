@@ -50,8 +50,7 @@ public:
                 const CreaseSitesParams& params = {});
 
     //! The held sites (rows, lifted like the surface's points): corners (vertices with other
-    //! than two crease edges) first, by vertex index, then the chains'. When only the corners
-    //! are held (the budget's cap), no free site is kept off the creases.
+    //! than two crease edges) first, by vertex index, then the chains'.
     const LiftedPoints& held() const { return held_; }
 
     //! `count` sites drawn as random_sites(surface, count, seed) draws them, none of which crowds
