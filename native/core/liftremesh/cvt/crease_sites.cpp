@@ -55,13 +55,14 @@ std::vector<std::vector<int32_t>> crease_chains(const std::map<int32_t, std::vec
 
 CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseEdge>& creases,
                          long sites, const CreaseSitesParams& params)
-    : creases_(creases), xyz_(surface.points.leftCols<3>()), params_(params) {
+    : creases_(creases), params_(params) {
     if (!(params_.min_separation >= 0.0) || !(params_.max_fraction >= 0.0 && params_.max_fraction <= 1.0) ||
         !(params_.clearance >= 0.0))
         throw InvalidInput("crease_sites: the separation and clearance must not be negative, the fraction held "
                            "must be between 0 and 1");
     const Eigen::Index nv = surface.points.rows();
     const int d = surface.dimension();
+    auto xyz = [&surface](int32_t v) -> Eigen::Vector3d { return surface.points.row(v).leftCols<3>().transpose(); };
     held_.resize(0, d);
     std::map<int32_t, std::vector<int32_t>> next; // each crease vertex's neighbours along the creases
     for (const auto& [a, b, left, right, turn] : creases_) {
@@ -104,7 +105,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
         // Length along the chain in local spacings, tau; n pieces of equal tau.
         std::vector<double> tau{0.0};
         for (size_t i = 1; i < chain.size(); ++i) {
-            const double step = (xyz_.row(chain[i]) - xyz_.row(chain[i - 1])).norm();
+            const double step = (xyz(chain[i]) - xyz(chain[i - 1])).norm();
             tau.push_back(tau.back() + step / (0.5 * (spacing_[chain[i]] + spacing_[chain[i - 1]])));
         }
         const bool loop = chain.front() == chain.back();
@@ -150,25 +151,17 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     // vertices next to a crease far enough from it that its moves keep their triangles whole.
     if (held_.rows() == 0) return;
 
-    // Samples along the crease edges for crowds(): a point within r of an edge has a
-    // sample within r + step.
-    sample_step_ = 0.25 * smallest;
-    std::vector<Eigen::Vector3d> samples;
-    for (size_t e = 0; e < creases_.size(); ++e) {
-        const Eigen::Vector3d pa = xyz_.row(creases_[e].a).transpose(), pb = xyz_.row(creases_[e].b).transpose();
-        const double steps = std::min(1e5, std::ceil((pb - pa).norm() / sample_step_));
-        for (int i = 0; i <= static_cast<int>(steps); ++i) {
-            samples.push_back(pa + (pb - pa) * (i / std::max(1.0, steps)));
-            sample_edge_.push_back(static_cast<int32_t>(e));
-        }
-        lifted_ends_.emplace_back(surface.points.row(creases_[e].a), surface.points.row(creases_[e].b));
+    // The crease edges for crowds(), in 3D (sampled a quarter of the smallest spacing apart)
+    // and lifted.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+    for (const CreaseEdge& e : creases_) {
+        segments.emplace_back(xyz(e.a), xyz(e.b));
+        lifted_ends_.emplace_back(surface.points.row(e.a), surface.points.row(e.b));
     }
-    Points m(static_cast<Eigen::Index>(samples.size()), 3);
-    for (size_t i = 0; i < samples.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = samples[i].transpose();
-    samples_.emplace(m);
+    edges_.emplace(segments, 0.25 * smallest);
     double widest = 0.0; // the largest clearance, at the most acute crease
     for (const CreaseEdge& e : creases_) widest = std::max(widest, clearance(e.turn_deg));
-    reach_ = widest * largest + sample_step_;
+    reach_ = widest * largest;
 }
 
 // The clearance over sin(alpha) for an interior angle alpha under 90 degrees (see the header),
@@ -181,12 +174,9 @@ double CreaseSites::clearance(double turn_deg) const {
 }
 
 bool CreaseSites::crowds(const Eigen::Ref<const Eigen::RowVectorXd>& site, std::vector<int32_t>& found) const {
-    if (!samples_) return false;
-    const Eigen::Vector3d p = site.leftCols<3>().transpose();
-    found.clear();
-    samples_->within(p.data(), reach_, found); // 3D distances are at most the lifted ones
-    for (int32_t s : found) {
-        const int32_t e = sample_edge_[s];
+    if (!edges_) return false;
+    edges_->near(site.leftCols<3>().transpose(), reach_, found); // 3D distances are at most the lifted ones
+    for (int32_t e : found) {
         const auto& [a, b, left, right, turn] = creases_[e];
         const Eigen::RowVectorXd& la = lifted_ends_[e].first;
         const Eigen::RowVectorXd along = lifted_ends_[e].second - la;
@@ -198,7 +188,7 @@ bool CreaseSites::crowds(const Eigen::Ref<const Eigen::RowVectorXd>& site, std::
 }
 
 LiftedPoints CreaseSites::free_sites(const LiftedSurface& surface, long count, std::uint64_t seed) const {
-    if (!samples_ || count <= 0) return random_sites(surface, count, seed);
+    if (!edges_ || count <= 0) return random_sites(surface, count, seed);
     // Drawn as random_sites draws, twice as many as wanted: those that crowd a crease are the
     // last taken, and of the others `count` at random, kept in the draw's (Morton) order.
     const LiftedPoints drawn = random_sites(surface, 2 * count + 16, seed);

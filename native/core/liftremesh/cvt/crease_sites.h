@@ -17,7 +17,7 @@
 
 #include "liftremesh/cvt/rvd.h"
 #include "liftremesh/mesh/creases.h"
-#include "liftremesh/spatial/neighbor_search.h"
+#include "liftremesh/spatial/segment_index.h"
 
 #include <cstdint>
 #include <optional>
@@ -67,14 +67,11 @@ public:
 
 private:
     std::vector<CreaseEdge> creases_;
-    Points xyz_;                 // the surface's vertices in 3D
     Eigen::VectorXd spacing_;    // per vertex, the local spacing (0 where no crease passes)
     LiftedPoints held_;
-    std::optional<KdTree> samples_; // points along the crease edges, at most a quarter spacing apart
-    std::vector<int32_t> sample_edge_;
+    std::optional<SegmentIndex> edges_; // the crease edges in 3D, once some site is held
     std::vector<std::pair<Eigen::RowVectorXd, Eigen::RowVectorXd>> lifted_ends_; // per crease edge
-    double sample_step_ = 0.0;
-    double reach_ = 0.0; // the farthest a sample can be from a site that crowds its crease
+    double reach_ = 0.0; // the farthest a site that crowds a crease can be from it
     CreaseSitesParams params_;
 
     double clearance(double turn_deg) const;

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "liftremesh/mesh/mesh.h"
-#include "liftremesh/spatial/neighbor_search.h"
+#include "liftremesh/spatial/segment_index.h"
 
 #include <optional>
 #include <unordered_map>
@@ -33,11 +33,9 @@ public:
 
 private:
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments_;
-    std::vector<int32_t> sample_segment_;
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
-    std::optional<KdTree> tree_;
-    double spacing_ = 0.0;
+    std::optional<SegmentIndex> index_; // over segments_, sampled every spacing
     mutable std::vector<int32_t> found_;
 };
 
