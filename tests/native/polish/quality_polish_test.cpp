@@ -1,7 +1,7 @@
 // The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
-// a sharp crease of the input is not; a cap on a crease is flipped, one on the rim of a thin plate
-// and a triangle short of a cap are not; a vertex pushed out of place on a flat part is moved back,
+// a sharp crease of the input is not; a cap on a crease is flipped, so is one turned over onto
+// the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not; a vertex pushed out of place on a flat part is moved back,
 // one on a crease is not; a closed surface keeps its topology, its orientation and its worst
 // triangle at least as good.
 #include "liftremesh/edit/flip_rules.h"
@@ -170,6 +170,35 @@ TEST(QualityPolish, ACapOnTheRimOfAThinPlateIsKept) {
     ASSERT_TRUE(cap_flip_fits_input(editable, *quad, tree, 0.1)); // on its own, the flip would do
     polish_quality(m, {input, tree}, with_tolerance(0.1));
     EXPECT_TRUE(has_edge(m, 0, 1));
+}
+
+TEST(QualityPolish, ACapTurnedOverAboveAStepIsFlippedDownIt) {
+    // A step 0.3 high: the face z = 0 for x up to its rim, which bends from (0, -1.5) out to
+    // (0.05, 0) and back to (0, 1.5), the face z = -0.3 beyond. Three output vertices on the rim,
+    // a, c and b, make a cap turned over onto (b, a, d), d on the lower face: the cap faces -z,
+    // the others +z. Flipped, the triangles from the rim down to d lie up to 0.15 off the input:
+    // beyond a tolerance of 0.1, within twice it.
+    const double s = 0.3;
+    const Mesh input = test::make_mesh(
+        {{-1, 0, 0}, {-1, -1.5, 0}, {0, -1.5, 0}, {0.05, 0, 0}, {0, 1.5, 0}, {-1, 1.5, 0}, // upper face
+         {0, -1.5, -s}, {0.05, 0, -s}, {0, 1.5, -s}, {1, 1.5, -s}, {1, -1.5, -s}},        // lower face
+        {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, // upper, fanned from (-1, 0, 0)
+         {2, 6, 7}, {2, 7, 3}, {3, 7, 8}, {3, 8, 4}, // the wall, facing +x
+         {6, 10, 7}, {7, 10, 9}, {7, 9, 8}});        // lower
+    Mesh m = test::make_mesh({{0, -1, 0}, {0, 1, 0}, {0.05, 0, 0}, {0.8, 0, -s}, {-0.8, 0, 0}},
+                             {{0, 1, 2}, {1, 0, 3}, {2, 1, 4}, {0, 2, 4}});
+    const AabbTree tree(input);
+    EditableMesh editable(m);
+    ASSERT_LT(editable.normal(editable.tris[0]).z(), 0.0); // turned over
+    const auto quad = editable.quad_of(editable.edge_uses().at(edge_key(0, 1)));
+    ASSERT_TRUE(quad.has_value());
+    EXPECT_TRUE(cap_flip_fits_input(editable, *quad, tree, 0.1));
+    EXPECT_FALSE(cap_flip_fits_input(editable, *quad, tree, 0.07)); // 0.15 off: beyond twice 0.07
+    polish_quality(m, {input, tree}, with_tolerance(0.1));
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        EXPECT_GT((corner(m, f, 1) - corner(m, f, 0)).cross(corner(m, f, 2) - corner(m, f, 0)).z(), 0.0) << f;
 }
 
 TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {

@@ -84,7 +84,14 @@ bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qua
     const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
     const auto [n1, n2] = EditableMesh::flipped(quad);
     if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) > std::min(mesh.kappa(t1), mesh.kappa(t2)))) return false;
-    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+    // A cap turned over onto the triangle across its long edge (by more than 90 degrees) is a
+    // fold laid flat, its apex on the wrong side of that edge: three vertices along a crease
+    // bending towards a face a step lower, narrower than the edge length, which has no row of
+    // its own. Either way the surface crosses that step; flipped, it no longer doubles back, so
+    // the new triangles may lie twice as far from the input.
+    const bool turned_over = mesh.normal(t1).dot(mesh.normal(t2)) < 0.0;
+    const double reach = turned_over ? 2.0 * tolerance : tolerance;
+    return lies_on_input(mesh, n1, input, reach) && lies_on_input(mesh, n2, input, reach);
 }
 
 bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,

@@ -44,7 +44,8 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
 //! Whether flipping the quad's edge removes a cap (the rule above, but for the turn from the
 //! cap's other neighbours, which the quad does not see): one of its two triangles, not both, has
 //! an angle of 150 degrees or more opposite the edge; both new ones lie on the input (as for a
-//! fold) and their worse kappa is above the old pair's.
+//! fold; within twice the tolerance when the cap is turned over onto the other triangle, by
+//! more than 90 degrees) and their worse kappa is above the old pair's.
 bool cap_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input,
                          double tolerance);
 
