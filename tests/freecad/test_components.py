@@ -76,7 +76,7 @@ class StrayPiecesOfAFrame(unittest.TestCase):
     def setUpClass(cls):
         cls.shape = frame()
         cls.assertTrue(cls, cls.shape.isValid())
-        mesh = meshing.tessellate(cls.shape, 0.1, 0.523599)
+        mesh = meshing.tessellate(cls.shape, 0.1, 30.0)  # degrees: the STL export's defaults
         points, triangles = meshing.mesh_to_arrays(mesh)
         cls.points, cls.triangles, cls.report = liftremesh.remesh(points, triangles, vertices=6000)
 
