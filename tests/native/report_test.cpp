@@ -108,6 +108,23 @@ TEST(Report, WarnsOfTrianglesPassingThroughEachOtherWhateverTheInputHas) {
     EXPECT_NE(to_json(r).find("\"self_intersections\": 607"), std::string::npos) << to_json(r);
 }
 
+TEST(Report, WarnsOfFoldedEdgesBeyondTheSourcesKnifeEdges) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = 2;
+    r.input.folded_edges = 4; // a knife edge of 1 under 10 degrees, in 4 edges
+    r.input.folded_edge_length = 1.0;
+    r.output.folded_edges = 9; // followed at a finer size: 9 edges, as long
+    r.output.folded_edge_length = 1.05;
+    EXPECT_TRUE(report_warnings(r).empty());
+    r.output.folded_edges = 12; // and a patch facing against its neighbours
+    r.output.folded_edge_length = 1.3;
+    const std::vector<std::string> w = report_warnings(r);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("12 edges whose two triangles are folded onto each other (the source 4)"), std::string::npos)
+        << w[0];
+    EXPECT_NE(to_json(r).find("\"folded_edges\": 12"), std::string::npos) << to_json(r);
+}
+
 TEST(Report, WarnsOfPartsKeepingTheSourcesTriangles) {
     RemeshReport r;
     r.input.euler_characteristic = r.output.euler_characteristic = 6;

@@ -97,6 +97,8 @@ std::string json_quality(const MeshQuality& q, int indent) {
                         {"component_list", json_array(q.component_list, json_component)},
                         {"euler_characteristic", json_number(static_cast<long>(q.euler_characteristic))},
                         {"sharp_edge_length", json_number(q.sharp_edge_length)},
+                        {"folded_edges", json_number(q.folded_edges)},
+                        {"folded_edge_length", json_number(q.folded_edge_length)},
                         {"self_intersections", json_number(q.self_intersections)}},
                        indent);
 }
@@ -169,6 +171,12 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
         found.push_back("the result has " + std::to_string(out.self_intersections) +
                         " pairs of triangles passing through each other (the source " +
                         std::to_string(in.self_intersections) + "): a tetrahedral mesher will refuse it");
+    // A knife edge of the source, followed, is folded too: only a longer total is news (a tenth
+    // more, for its resampling).
+    if (out.folded_edges > 0 && out.folded_edge_length > 1.1 * in.folded_edge_length)
+        found.push_back("the result has " + std::to_string(out.folded_edges) +
+                        " edges whose two triangles are folded onto each other (the source " +
+                        std::to_string(in.folded_edges) + "): a tetrahedral mesher will refuse it");
     if (report.hausdorff_relative > kFarFromInput) {
         char text[160];
         std::snprintf(text, sizeof text, "the result is up to %.2g %% of the bounding-box diagonal away from the source",

@@ -220,6 +220,28 @@ TEST(Quality, SharpEdgeLengthOfCubeAndSphere) {
     EXPECT_NEAR(measure_quality(sphere, {0.5}).sharp_edge_length, total_edge_length(sphere), 1e-9);
 }
 
+// A triangle and, across its edge 0-2, a flap laid back flat onto it: neighbours that agree, yet
+// turned by 180 degrees. A knife edge folds as much under 10 degrees.
+TEST(Quality, AFlapLaidBackFlatIsAFoldedEdgeAndACubeHasNone) {
+    const Mesh flap = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.7, 0.2, 0}},
+                                      {{0, 1, 2}, {2, 3, 0}, {0, 2, 4}});
+    // The pair alone: (0, 2, 3) runs 0-2 against (0, 1, 2) and faces -z, its apex beyond 0-2.
+    const Mesh pair = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.7, 0.2, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    const MeshQuality folded = measure_quality(pair);
+    EXPECT_TRUE(folded.oriented); // its neighbours agree: only the geometry folds
+    EXPECT_EQ(folded.folded_edges, 1);
+    EXPECT_NEAR(folded.folded_edge_length, std::sqrt(2.0), 1e-12);
+    EXPECT_EQ(measure_quality(flap).folded_edges, 0); // 0-2 has three triangles: not manifold
+    // A knife edge of 9 degrees (turning by 171): folded; of 11: not.
+    for (const double deg : {171.0, 169.0}) {
+        const double a = (180.0 - deg) * M_PI / 180.0;
+        const Mesh knife = test::make_mesh({{0, 0, 0}, {0, 1, 0}, {1, 0.5, 0}, {std::cos(a), 0.5, std::sin(a)}},
+                                           {{0, 2, 1}, {1, 3, 0}});
+        EXPECT_EQ(measure_quality(knife).folded_edges, deg > kFoldedTurnDeg ? 1 : 0) << deg;
+    }
+    EXPECT_EQ(measure_quality(test::make_cube(0.5, 3)).folded_edges, 0);
+}
+
 // A plate 1 x 1 x 0.01: its rims (8 edges of 1) and its corners (4 of 0.01) all border a side
 // triangle 0.01 wide (its altitude over the diagonal: 0.01 / sqrt(1.0001)), so a width under
 // that counts them all and one over it none, whatever their angle.

@@ -78,9 +78,14 @@ long measure_edges(const Mesh& mesh, const SharpEdgeCriterion& sharp, MeshQualit
         if (count >= 3) ++q.nonmanifold_edges;
         if (count == 2) {
             if (runs_forward(mesh.triangles, use[0]) == runs_forward(mesh.triangles, use[1])) q.oriented = false;
-            if (normal_angle_deg(mesh, use[0], use[1]) > sharp.angle_deg &&
-                at_least_as_wide(mesh, use[0] / 3, sharp.min_width) && at_least_as_wide(mesh, use[1] / 3, sharp.min_width))
+            const double turn = normal_angle_deg(mesh, use[0], use[1]);
+            if (turn > sharp.angle_deg && at_least_as_wide(mesh, use[0] / 3, sharp.min_width) &&
+                at_least_as_wide(mesh, use[1] / 3, sharp.min_width))
                 q.sharp_edge_length += length;
+            if (turn > kFoldedTurnDeg) {
+                ++q.folded_edges;
+                q.folded_edge_length += length;
+            }
         }
     }
     q.boundary_edges = static_cast<long>(boundary.size());

@@ -45,10 +45,19 @@ struct MeshQuality {
     std::vector<MeshComponent> component_list;
     int euler_characteristic = 0;          //!< V - E + F
     double sharp_edge_length = 0.0;        //!< total length of the edges SharpEdgeCriterion counts
+    //! Manifold edges whose two triangles turn by more than kFoldedTurnDeg: folded onto each
+    //! other (a flap laid back flat, a patch facing against its neighbours), or a knife edge of
+    //! under 10 degrees. Neither a crossing nor a misoriented edge, yet a tetrahedral mesher
+    //! refuses them; the count and their total length.
+    long folded_edges = 0;
+    double folded_edge_length = 0.0;
     //! Pairs of triangles passing through each other (count_self_intersections, which needs an
     //! AABB tree: measure_quality leaves 0 here, the pipeline counts them for input and output).
     long self_intersections = 0;
 };
+
+//! The turn of an edge's two triangles, in degrees, past which MeshQuality counts it folded.
+constexpr double kFoldedTurnDeg = 170.0;
 
 //! How many components MeshQuality::component_list lists at most.
 constexpr int kListedComponents = 20;
