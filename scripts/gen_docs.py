@@ -287,6 +287,10 @@ def small_mesh(path):
         f.writelines("3 %d %d %d\n" % t for t in triangles)
 
 
+# Lengths that the sample run leaves at 0, which JSON writes as an integer.
+NUMBER_FIELDS = {"folded_edge_length"}
+
+
 def field_rows(report, described, prefix=""):
     rows, missing = [], []
     for key, value in report.items():
@@ -295,7 +299,8 @@ def field_rows(report, described, prefix=""):
             missing.append(prefix + key)
             meaning = "(not described: add it to scripts/gen_docs.py)"
         kind = ("object" if isinstance(value, dict) else "list" if isinstance(value, list)
-                else "boolean" if isinstance(value, bool) else "integer" if isinstance(value, int)
+                else "boolean" if isinstance(value, bool) else "number" if key in NUMBER_FIELDS
+                else "integer" if isinstance(value, int)
                 else "number" if isinstance(value, float) else "string")
         rows.append("| `%s` | %s | %s |" % (prefix + key, kind, cell(meaning)))
     return rows, missing
