@@ -57,10 +57,10 @@ QUALITY = {
                       "theorem; negative facing inward; null for an open one) and `cavity`",
     "euler_characteristic": "V - E + F (2 for a sphere, 2 - 2g for a closed surface of genus g)",
     "sharp_edge_length": "total length of the edges whose two faces turn by more than 60 degrees",
-    "folded_edges": "edges whose two triangles turn by more than 170 degrees: folded onto each other "
-                    "(a flap laid back flat, a patch facing against its neighbours), or a knife edge "
-                    "under 10 degrees. Not crossings, which `self_intersections` counts, yet a "
-                    "tetrahedral mesher refuses them",
+    "folded_edges": "edges whose two triangles turn by more than 170 degrees: a knife edge under 10 "
+                    "degrees, or two triangles folded onto each other (a flap laid back flat, a patch "
+                    "facing against its neighbours). Folded, they overlap, which a tetrahedral mesher "
+                    "refuses, though `self_intersections` does not count them",
     "folded_edge_length": "total length of the `folded_edges`",
     "self_intersections": "pairs of triangles passing through each other (a side of one through the "
                           "inside of the other; neighbours and coplanar overlaps not counted): what a "

@@ -45,10 +45,10 @@ struct MeshQuality {
     std::vector<MeshComponent> component_list;
     int euler_characteristic = 0;          //!< V - E + F
     double sharp_edge_length = 0.0;        //!< total length of the edges SharpEdgeCriterion counts
-    //! Manifold edges whose two triangles turn by more than kFoldedTurnDeg: folded onto each
-    //! other (a flap laid back flat, a patch facing against its neighbours), or a knife edge of
-    //! under 10 degrees. Neither a crossing nor a misoriented edge, yet a tetrahedral mesher
-    //! refuses them; the count and their total length.
+    //! Manifold edges whose two triangles turn by more than kFoldedTurnDeg, and their total
+    //! length: a knife edge of under 10 degrees, or two triangles folded onto each other (a flap
+    //! laid back flat, a patch facing against its neighbours). Folded, they overlap, which a
+    //! tetrahedral mesher refuses, though neighbours agree and no side passes through the other.
     long folded_edges = 0;
     double folded_edge_length = 0.0;
     //! Pairs of triangles passing through each other (count_self_intersections, which needs an

@@ -14,9 +14,10 @@
 //   turns by more than 120 degrees from the cap's neighbour it then borders. The crease then runs
 //   through the apex. A cap turned over onto the triangle across its edge, its apex beyond that
 //   edge (a crease bending towards a face a step lower, with no row of its own), may leave the
-//   new triangles twice as far from the input: they cross the step, as it did, without folding. The cap's normal, near zero, is not weighed, as the flips below would. A
-//   cap on the rim of a plate thinner than the edge length stands for that rim and is kept:
-//   flipped, the plate would fold onto itself;
+//   new triangles twice as far from the input: they cross the step, as it did, without folding.
+//   The cap's normal, near zero, is not weighed, as the flips below would. A cap on the rim of a
+//   plate thinner than the edge length stands for that rim and is kept: flipped, the plate would
+//   fold onto itself;
 // - flips: an edge is flipped when its quad is nearly planar and the worse kappa (Eq. 26) of its
 //   two triangles goes up (EditableMesh::flip_improves_quality: never across a sharp edge, whose
 //   triangles turn by more than 30 degrees), and the new diagonal's midpoint is no farther from
