@@ -1,9 +1,9 @@
 // The quality polish: a flat quad split along its longer diagonal is flipped, a sharp edge and
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
 // a sharp crease of the input is not; a cap on a crease is flipped, so is one turned over onto
-// the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not; a vertex pushed out of place on a flat part is moved back,
-// one on a crease is not; a closed surface keeps its topology, its orientation and its worst
-// triangle at least as good.
+// the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not;
+// a vertex pushed out of place on a flat part is moved back, one on a crease is not; a closed
+// surface keeps its topology, its orientation and its worst triangle at least as good.
 #include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/measure/quality.h"
