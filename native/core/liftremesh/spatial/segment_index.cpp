@@ -27,6 +27,9 @@ void SegmentIndex::near(const Eigen::Vector3d& p, double r, std::vector<int32_t>
     if (!tree_) return;
     tree_->within(p.data(), r + step_, out);
     for (int32_t& s : out) s = sample_segment_[s];
+    // A segment has a sample every step: a point near it finds several, one is enough.
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 } // namespace liftremesh

@@ -17,9 +17,8 @@ public:
     //! pieces a segment). `step` positive.
     SegmentIndex(const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segments, double step);
 
-    //! Replaces `out` by the segments with a sample within r + step of p, one entry per such
-    //! sample (a segment may come more than once), in the kd-tree's order: every segment that
-    //! passes within r of p is among them. Thread-safe (const).
+    //! Replaces `out` by the segments with a sample within r + step of p, each once, by index:
+    //! every segment that passes within r of p is among them. Thread-safe (const).
     void near(const Eigen::Vector3d& p, double r, std::vector<int32_t>& out) const;
 
 private:
