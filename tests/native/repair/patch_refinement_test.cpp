@@ -88,6 +88,25 @@ TEST(PatchRefinement, CapHoleOnASphereIsClosedFacingOutward) {
     EXPECT_GE(min_kappa(m, first), 0.6);
 }
 
+// A hole of one cell of a grid of edge h: its diagonal (1.41 h) is over the split bound of 4/3 h,
+// but its midpoint is 0.71 h from the other two corners, under the 4/5 h at which an isotropic
+// remesher collapses an edge again. The two triangles of the fill are of the mesh's own size:
+// no vertex is added (with the split, a remesh of 500 vertices came out with 501).
+TEST(PatchRefinement, AHoleOfTheMeshsOwnSizeKeepsItsTwoTriangles) {
+    Mesh m = with_hole(make_square(4.0, 4), [](const Eigen::Vector3d& c) {
+        return c.x() > 1.0 && c.x() < 2.0 && c.y() > 1.0 && c.y() < 2.0;
+    });
+    const Eigen::Index first = m.triangles.rows();
+    HoleFillingParams cell;
+    cell.should_fill = [](const std::vector<int32_t>& loop) { return loop.size() == 4; }; // not the border
+    ASSERT_EQ(fill_holes(m, cell).filled, 1);
+    ASSERT_EQ(m.triangles.rows(), first + 2);
+    const Mesh filled = m;
+    EXPECT_EQ(refine_patches(m, {first, 1.0, 1000}).inserted, 0);
+    EXPECT_EQ(m.points.rows(), filled.points.rows());
+    EXPECT_TRUE(topology(m).oriented_manifold());
+}
+
 TEST(PatchRefinement, NothingToRefineAndBadArguments) {
     Mesh m = make_icosphere(1);
     const Mesh before = m;

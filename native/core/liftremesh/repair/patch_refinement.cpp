@@ -22,9 +22,13 @@ public:
             for (int j = 0; j < 3; ++j) outside_.insert(edge_key(mesh.triangles(f, j), mesh.triangles(f, (j + 1) % 3)));
     }
 
-    // Splits the edges two patch triangles share that are longer than 4/3 h, or longer than
-    // h / 2 and opposite an angle above 120 degrees (a sliver's long side), longest first; a
-    // triangle is split once a round. Returns whether any edge was split.
+    // Splits the edges two patch triangles share that are longer than 4/3 h where no edge
+    // from the midpoint to an opposite vertex would be shorter than 4/5 h, or longer than h / 2
+    // and opposite an angle above 120 degrees (a sliver's long side), longest first; a triangle
+    // is split once a round. Returns whether any edge was split. The 4/5 h is isotropic
+    // remeshing's collapse bound (Botsch and Kobbelt): a hole of the mesh's own size, such as a
+    // quad whose diagonal is a little over 4/3 h, keeps its two triangles rather than gaining a
+    // vertex a remesher would collapse again.
     bool split_long_edges(double h, long max_added) {
         std::vector<std::pair<double, uint64_t>> candidates;
         const auto uses = mesh_.edge_uses();
@@ -34,7 +38,9 @@ public:
             const int32_t a = t[use[0].j], b = t[(use[0].j + 1) % 3];
             const double length = (mesh_.points[b] - mesh_.points[a]).norm();
             const bool obtuse = opposite_cos(use[0]) < -0.5 || opposite_cos(use[1]) < -0.5;
-            if (length > 4.0 / 3.0 * h || (obtuse && length > 0.5 * h)) candidates.emplace_back(-length, key);
+            const Eigen::Vector3d mid = 0.5 * (mesh_.points[a] + mesh_.points[b]);
+            const bool apart = (opposite(use[0]) - mid).norm() >= 0.8 * h && (opposite(use[1]) - mid).norm() >= 0.8 * h;
+            if ((length > 4.0 / 3.0 * h && apart) || (obtuse && length > 0.5 * h)) candidates.emplace_back(-length, key);
         }
         std::sort(candidates.begin(), candidates.end()); // longest first, then by key: deterministic
         std::vector<char> touched(mesh_.tris.size(), 0);
@@ -111,6 +117,8 @@ public:
 
 private:
     // Cosine of the angle of the use's triangle opposite its edge.
+    Eigen::Vector3d opposite(const EditableMesh::Use& u) const { return mesh_.points[mesh_.tris[u.tri][(u.j + 2) % 3]]; }
+
     double opposite_cos(const EditableMesh::Use& u) const {
         const Tri& t = mesh_.tris[u.tri];
         const Eigen::Vector3d c = mesh_.points[t[(u.j + 2) % 3]];
