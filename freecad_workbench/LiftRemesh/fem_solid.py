@@ -174,12 +174,22 @@ def solid_mesh(mesh, shape=None, order=2, quality=QUALITY, progress=None, label=
     return SolidMesh(nodes, elements, len(points), triangles, quality_figures, snapped, faceted)
 
 
+# How far, relative to the largest coordinate, a closest point may be from its STL triangle's
+# corner or edge to be put on it: about 17 times the rounding of a Mesh.Mesh's float32 points.
+RIM_ROUNDING = 1e-6
+
+
 def on_surface(vectors, surface):
-    """The closest points of the Mesh.Mesh `surface` to the FreeCAD vectors `vectors`."""
+    """The closest points of the Mesh.Mesh `surface` to the FreeCAD vectors `vectors`. A Mesh.Mesh
+    holds float32 points, so a vertex on a crease of the STL comes a rounding off it, and its
+    closest point would be on one facet only, a rounding below the other's plane: a planar region
+    would no longer be one face. A closest point within that rounding of its triangle's corner or
+    edge is put on it, on both facets' planes."""
     from . import meshing
 
     surface_points, surface_triangles = meshing.mesh_to_arrays(surface)
-    closest = native.load().closest_points(_array(vectors), surface_points, surface_triangles)
+    rim = RIM_ROUNDING * float(np.abs(surface_points).max(initial=0.0))
+    closest = native.load().closest_points(_array(vectors), surface_points, surface_triangles, rim=rim)
     return [FreeCAD.Vector(*p) for p in np.asarray(closest).tolist()]
 
 

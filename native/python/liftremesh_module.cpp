@@ -3,6 +3,7 @@
 // parameter_table(), so the CLI, this module and the FreeCAD workbench share one source of truth.
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/components.h"
+#include "liftremesh/mesh/geometry.h"
 #include "liftremesh/params.h"
 #include "liftremesh/pipeline.h"
 #include "liftremesh/report.h"
@@ -318,9 +319,11 @@ py::dict components(const py::object& points_in, const py::object& triangles_in)
     return out;
 }
 
-// The closest point of a reference surface to each point, as an (n, 3) float64 array.
+// The closest point of a reference surface to each point, as an (n, 3) float64 array; on its
+// triangle's rim when within `rim` of it (onto_triangle_rim_within).
 py::array_t<double> closest_points(const py::object& points_in, const py::object& surface_points_in,
-                                   const py::object& surface_triangles_in) {
+                                   const py::object& surface_triangles_in, double rim) {
+    if (!(rim >= 0.0) || !std::isfinite(rim)) throw InvalidInput("closest_points: rim must be >= 0 and finite");
     const Points points = to_points(points_in);
     Mesh surface;
     surface.points = to_points(surface_points_in);
@@ -333,7 +336,11 @@ py::array_t<double> closest_points(const py::object& points_in, const py::object
         const AabbTree tree(surface);
         for (Eigen::Index i = 0; i < points.rows(); ++i) {
             const Eigen::Vector3d q = points.row(i).transpose();
-            const Eigen::Vector3d c = tree.closest(q).point;
+            const ClosestPoint closest = tree.closest(q);
+            const Eigen::Vector3d c = rim > 0.0 ? onto_triangle_rim_within(closest.point, corner(surface, closest.triangle, 0),
+                                                                           corner(surface, closest.triangle, 1),
+                                                                           corner(surface, closest.triangle, 2), rim)
+                                                : closest.point;
             for (int k = 0; k < 3; ++k) data[3 * i + k] = c[k];
         }
     }
@@ -408,12 +415,14 @@ facing inward and inside the other closed components (a hollowed solid's inner w
 float64; "triangles" (k,) int64; and "label" (m,) int32, each triangle's component.
 Raises InvalidInput (a ValueError) for bad arrays. The GIL is released while it runs.)doc");
     m.def("closest_points", &closest_points, py::arg("points"), py::arg("surface_points"),
-          py::arg("surface_triangles"),
+          py::arg("surface_triangles"), py::arg("rim") = 0.0,
           R"doc(The closest point of a triangle surface to each of `points`.
 
 points: (n, 3) float64; surface_points: (k, 3) float64; surface_triangles: (m, 3) integer, m > 0.
-Returns an (n, 3) float64 array. Raises InvalidInput (a ValueError) for bad arrays. The GIL is
-released while it runs.)doc");
+rim: a closest point within this distance of its triangle's corner or edge is put on it (the
+corner first), so that a point a rounding off a crease between two planar facets lies on both
+planes; 0 (the default) leaves it. Returns an (n, 3) float64 array. Raises InvalidInput (a
+ValueError) for bad arrays or a negative rim. The GIL is released while it runs.)doc");
     m.def("defaults", &parameter_defaults, py::arg("mode") = "isotropic",
           "The default value of every parameter of remesh() for a mode, as a dict.");
     m.def("parameters", &parameter_list,

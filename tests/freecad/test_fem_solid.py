@@ -337,6 +337,24 @@ class StlOnlyTest(unittest.TestCase):
             self.assertAlmostEqual(displacement / reference, 1.0, delta=AGREEMENT)
 
 
+class OnSurfaceTest(unittest.TestCase):
+    """Points put on an STL keep its planar regions planar."""
+
+    def test_points_rounded_off_a_crease_stay_on_both_planes(self):
+        # A flat facet at z = 22 and one sloping down from it along a crease that no axis follows,
+        # as where the bracket's boss top meets its chamfer. Points on the crease, rounded to
+        # float32 as a Mesh.Mesh holds them, fall a rounding to either side: the closest point on
+        # the sloping facet was a rounding below z = 22, and the boss top came out in 22 faces.
+        a, b = (0.0, 0.0, 22.0), (10.0, 7.0, 22.0)
+        surface = Mesh.Mesh([[a, b, (0.0, 10.0, 22.0)], [b, a, (10.0, 0.0, 19.0)]])
+        along = np.linspace(0.01, 0.99, 200)[:, None]
+        rounded = (np.array(a) + along * (np.array(b) - np.array(a))).astype(np.float32).astype(np.float64)
+        moved = fem_solid.on_surface([FreeCAD.Vector(*p) for p in rounded.tolist()], surface)
+        self.assertEqual([v.z for v in moved], [22.0] * len(moved))
+        off = [(v - FreeCAD.Vector(*p)).Length for v, p in zip(moved, rounded.tolist())]
+        self.assertLess(max(off), 1e-5)
+
+
 class ModuleHelpersTest(unittest.TestCase):
     """The compiled module's helpers fem_solid uses: crossing_triangles, closest_points."""
 

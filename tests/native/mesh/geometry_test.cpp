@@ -199,6 +199,20 @@ TEST(Geometry, ClosestPointOnSegmentRegions) {
     EXPECT_EQ(closest_point_on_segment({1, 1, 1}, a, a), a); // degenerate segment
 }
 
+// A point within reach of a corner goes onto it, else onto the nearest edge within reach; a
+// point on the edge of a flat facet and one tilted below it then lies on both planes exactly.
+TEST(Geometry, OntoTriangleRimWithinReach) {
+    const Eigen::Vector3d a(0, 0, 22), b(10, 7, 22), c(0, 10, 22);
+    EXPECT_EQ(onto_triangle_rim_within({1e-7, 1e-7, 22}, a, b, c, 1e-6), a); // a corner first
+    const Eigen::Vector3d near_edge = a + 0.3 * (b - a) + 2e-7 * Eigen::Vector3d(-0.7, 1.0, 0.0).normalized();
+    const Eigen::Vector3d on_edge = onto_triangle_rim_within(near_edge, a, b, c, 1e-6);
+    EXPECT_EQ(on_edge.z(), 22.0);
+    EXPECT_NEAR((on_edge - (a + 0.3 * (b - a))).norm(), 0.0, 1e-12);
+    const Eigen::Vector3d inside(2, 5, 22);
+    EXPECT_EQ(onto_triangle_rim_within(inside, a, b, c, 1e-6), inside); // out of reach: unchanged
+    EXPECT_EQ(onto_triangle_rim_within(near_edge, a, b, c, 0.0), near_edge);
+}
+
 TEST(Mesh, EulerCharacteristicOfBuiltShapes) {
     EXPECT_EQ(euler_characteristic(test::make_icosphere(2)), 2);
     EXPECT_EQ(euler_characteristic(test::make_torus(1.0, 0.3, 24, 12)), 0);

@@ -52,6 +52,26 @@ Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::
     return a + t * ab;
 }
 
+Eigen::Vector3d onto_triangle_rim_within(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c, double within) {
+    const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+    const Eigen::Vector3d* nearest = nullptr;
+    double best = within;
+    for (const Eigen::Vector3d* x : corners) {
+        const double d = (*x - p).norm();
+        if (d <= best) best = d, nearest = x;
+    }
+    if (nearest) return *nearest;
+    Eigen::Vector3d out = p;
+    best = within;
+    for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d q = closest_point_on_segment(p, *corners[j], *corners[(j + 1) % 3]);
+        const double d = (q - p).norm();
+        if (d <= best) best = d, out = q;
+    }
+    return out;
+}
+
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;

@@ -69,6 +69,13 @@ Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+//! p, a point of triangle (a, b, c), put on the triangle's rim when it lies within `within` of
+//! it: on the nearest corner within reach, else on the nearest point of the nearest edge within
+//! reach, else p itself. A point a rounding away from an edge where two planar facets meet is
+//! then on both facets' planes, not on one of them only, a rounding below the other.
+Eigen::Vector3d onto_triangle_rim_within(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c, double within);
+
 //! Area of the intersection of triangle (a, b, c) with the ball of radius r centred at p,
 //! i.e. of the triangle with the disk cut by the ball in the triangle's plane (Section 5.2.1).
 //! Zero for a triangle of no area.
