@@ -2,9 +2,11 @@
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
 // a sharp crease of the input is not; a cap on a crease is flipped, so is one turned over onto
 // the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not;
-// a vertex pushed out of place on a flat part is moved back, one on a crease is not; a closed
-// surface keeps its topology, its orientation and its worst triangle at least as good.
+// a chord across a curved wall is flipped along it; a vertex pushed out of place on a flat part
+// is moved back, one on a crease is not; a closed surface keeps its topology, its orientation
+// and its worst triangle at least as good.
 #include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/measure/quality.h"
 #include "liftremesh/polish/quality_polish.h"
@@ -207,6 +209,31 @@ TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {
     const test::OwnedReference input(right_crease());
     polish_quality(m, input, with_tolerance(0.5));
     EXPECT_TRUE(has_edge(m, 0, 1));
+}
+
+// Two triangles on the wall of a hole of radius 4 (the FreeCAD bracket's, edges of 2.5), split
+// along a chord round the wall spanning 48 degrees, whose midpoint lies 0.35 off it: a curved
+// tet10 element bending that edge back onto the wall was inverted, and FEM lost the faces. The
+// other diagonal runs nearly along the axis, 0.01 off, with both triangles above kappa 0.55.
+TEST(QualityPolish, AChordAcrossACurvedWallIsFlippedAlongIt) {
+    const test::OwnedReference input(test::make_open_cylinder(4.0, 10.0, 512, 40));
+    auto on_wall = [](double degrees, double z) {
+        const double u = degrees * M_PI / 180.0;
+        return Eigen::Vector3d(4.0 * std::cos(u), 4.0 * std::sin(u), z);
+    };
+    // a-b the chord, c above it and d below; both triangles face outwards, as the input does.
+    const Mesh quad = test::make_mesh({on_wall(124.3, 5.936), on_wall(172.4, 6.034), on_wall(139.8, 7.874), on_wall(146.7, 4.224)},
+                                      {{0, 1, 2}, {1, 0, 3}});
+    Mesh m = quad;
+    EXPECT_EQ(flips(m, input, 0.15 * 2.5), 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    EXPECT_GE(test::min_kappa(m), kKappaFloorChord);
+    EXPECT_EQ(test::facing_inward(m, {0, 0, 6}), 0);
+    // Within half the tolerance the chord is left as the optimisation made it.
+    Mesh loose = quad;
+    EXPECT_EQ(flips(loose, input, 1.0), 0);
+    EXPECT_TRUE(has_edge(loose, 0, 1));
 }
 
 TEST(QualityPolish, AVertexPushedOutOfPlaceOnAFlatPartIsMovedBack) {

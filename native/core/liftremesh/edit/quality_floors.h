@@ -18,5 +18,9 @@ inline constexpr double kKappaFloor = 0.3;
 //! snap/crease_snap.h): the surface there is near the input already, so only triangles as good
 //! as those the optimisation leaves are worth the move.
 inline constexpr double kKappaFloorOnInput = 0.45;
+//! Flipping a chord across a curved surface for the diagonal along it (polish/quality_polish.h):
+//! the chord is within the tolerance already, so the flip buys distance the output has to spare
+//! and may only leave triangles of the shape the optimisation gives most of them.
+inline constexpr double kKappaFloorChord = 0.55;
 
 } // namespace liftremesh

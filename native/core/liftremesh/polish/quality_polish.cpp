@@ -1,6 +1,7 @@
 #include "liftremesh/polish/quality_polish.h"
 
 #include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/compressed_rows.h"
 
@@ -13,9 +14,16 @@ namespace liftremesh {
 
 namespace {
 
-// Passes of fold and quality flips (the two rules ask for turns over 90 degrees and under 30:
-// never both), the first over the edges of the triangles flagged in `around`, each next one
-// over those of the triangles the last one changed. Returns the flips; counts the folds undone.
+// A quad whose two triangles turn by less than this (cosine of 5 degrees) is not weighed for a
+// chord flip, which measures two distances. A chord lying s below a surface its other two
+// vertices are on, each within t of it, turns its triangles by about 2 atan(s / t): over 10
+// degrees for s of half the tolerance (0.075 h) and t up to 0.8 h.
+constexpr double kChordMinTurnCos = 0.99619469809174553;
+
+// Passes of fold, chord and quality flips (the fold rule asks for turns over 90 degrees, the
+// quality rule under 30: never both), the first over the edges of the triangles flagged in
+// `around`, each next one over those of the triangles the last one changed. Returns the flips;
+// counts the folds undone.
 long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, int passes, std::vector<char> around,
                  long& unfolded) {
     long total = 0;
@@ -24,6 +32,17 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
         if (fold_flip_fits_input(mesh, q, input, tolerance)) {
             ++unfolded;
             return true;
+        }
+        // A chord across a curved surface (the wall of a hole, a fillet) whose midpoint lies over
+        // half the tolerance off it, where the other diagonal runs along the surface and lies at
+        // most half as far: flipped if neither new triangle is below kKappaFloorChord (or the
+        // old pair's worse). The quality flips never take it back: they may not give a diagonal
+        // more than half the tolerance off the input, nor farther than the old one.
+        const Eigen::Vector3d n1 = mesh.normal(mesh.tris[q.t1]), n2 = mesh.normal(mesh.tris[q.t2]);
+        if (n1.dot(n2) < kChordMinTurnCos * n1.norm() * n2.norm()) {
+            const auto [before, after] = diagonal_distances(mesh, q, input);
+            if (crease_flip_fits(mesh, q, before, after, 0.5 * tolerance, kKappaFloorChord)) return true;
+            return quality_flip_keeps_surface(mesh, q, before, after, tolerance);
         }
         return quality_flip_keeps_surface(mesh, q, input, tolerance);
     };
