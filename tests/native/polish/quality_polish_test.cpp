@@ -2,9 +2,9 @@
 // a flip that moves the surface away from the input are not; a fold is flipped onto the input,
 // a sharp crease of the input is not; a cap on a crease is flipped, so is one turned over onto
 // the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not;
-// a chord across a curved wall is flipped along it; a vertex pushed out of place on a flat part
-// is moved back, one on a crease is not; a closed surface keeps its topology, its orientation
-// and its worst triangle at least as good.
+// a chord across a curved wall is flipped along it, not where the new triangles would leave the
+// input; a vertex pushed out of place on a flat part is moved back, one on a crease is not; a
+// closed surface keeps its topology, its orientation and its worst triangle at least as good.
 #include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
@@ -234,6 +234,22 @@ TEST(QualityPolish, AChordAcrossACurvedWallIsFlippedAlongIt) {
     Mesh loose = quad;
     EXPECT_EQ(flips(loose, input, 1.0), 0);
     EXPECT_TRUE(has_edge(loose, 0, 1));
+}
+
+// A chord of 120 degrees round a wall of radius 4 (2.0 off it), whose other diagonal runs along
+// the axis: flipped, the new triangles would span 60 degrees each, their edges 0.54 off the
+// wall, over the tolerance of 0.5. A flip whose triangles do not lie on the input is not made
+// (on a thread's crests such flips left edges folded shut).
+TEST(QualityPolish, AChordFlipWhoseTrianglesLeaveTheInputIsNotMade) {
+    const test::OwnedReference input(test::make_open_cylinder(4.0, 10.0, 512, 40));
+    auto on_wall = [](double degrees, double z) {
+        const double u = degrees * M_PI / 180.0;
+        return Eigen::Vector3d(4.0 * std::cos(u), 4.0 * std::sin(u), z);
+    };
+    Mesh m = test::make_mesh({on_wall(90.0, 5.0), on_wall(210.0, 5.0), on_wall(150.0, 8.5), on_wall(150.0, 1.5)},
+                             {{0, 1, 2}, {1, 0, 3}});
+    EXPECT_EQ(flips(m, input, 0.5), 0);
+    EXPECT_TRUE(has_edge(m, 0, 1));
 }
 
 TEST(QualityPolish, AVertexPushedOutOfPlaceOnAFlatPartIsMovedBack) {

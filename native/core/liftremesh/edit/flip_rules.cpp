@@ -117,4 +117,11 @@ bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& q, dou
     return std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(kappa_floor, worst_before);
 }
 
+bool chord_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                           const AabbTree& input, double tolerance) {
+    if (!crease_flip_fits(mesh, quad, before, after, 0.5 * tolerance, kKappaFloorChord)) return false;
+    const auto [n1, n2] = EditableMesh::flipped(quad);
+    return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
+}
+
 } // namespace liftremesh

@@ -69,4 +69,12 @@ TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMe
 bool crease_flip_fits(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
                       double tolerance, double kappa_floor);
 
+//! Whether flipping the quad's edge takes a chord across a curved part of the input onto the
+//! diagonal along it (quality_polish.h: the chords): crease_flip_fits with half the tolerance
+//! and kKappaFloorChord, and both new triangles lie on the input (within `tolerance`, each
+//! normal within 30 degrees of the input's triangle nearest to its centroid), so that a flip
+//! never folds a new triangle onto the input's other side of a crease.
+bool chord_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& quad, double before, double after,
+                           const AabbTree& input, double tolerance);
+
 } // namespace liftremesh

@@ -1,7 +1,6 @@
 #include "liftremesh/polish/quality_polish.h"
 
 #include "liftremesh/edit/flip_rules.h"
-#include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/compressed_rows.h"
 
@@ -35,13 +34,13 @@ long flip_passes(EditableMesh& mesh, const AabbTree& input, double tolerance, in
         }
         // A chord across a curved surface (the wall of a hole, a fillet) whose midpoint lies over
         // half the tolerance off it, where the other diagonal runs along the surface and lies at
-        // most half as far: flipped if neither new triangle is below kKappaFloorChord (or the
-        // old pair's worse). The quality flips never take it back: they may not give a diagonal
-        // more than half the tolerance off the input, nor farther than the old one.
+        // most half as far (chord_flip_fits_input). The quality flips never take it back: they
+        // may not give a diagonal more than half the tolerance off the input, nor farther than
+        // the old one.
         const Eigen::Vector3d n1 = mesh.normal(mesh.tris[q.t1]), n2 = mesh.normal(mesh.tris[q.t2]);
         if (n1.dot(n2) < kChordMinTurnCos * n1.norm() * n2.norm()) {
             const auto [before, after] = diagonal_distances(mesh, q, input);
-            if (crease_flip_fits(mesh, q, before, after, 0.5 * tolerance, kKappaFloorChord)) return true;
+            if (chord_flip_fits_input(mesh, q, before, after, input, tolerance)) return true;
             return quality_flip_keeps_surface(mesh, q, before, after, tolerance);
         }
         return quality_flip_keeps_surface(mesh, q, input, tolerance);
