@@ -15,7 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <random>
+#include <vector>
 
 using namespace liftremesh;
 
@@ -39,6 +41,17 @@ bool has_edge(const Mesh& m, int32_t u, int32_t v) {
         for (int j = 0; j < 3; ++j)
             if (std::minmax(m.triangles(f, j), m.triangles(f, (j + 1) % 3)) == std::minmax(u, v)) return true;
     return false;
+}
+// The wall of a hole of radius 4, 10 high, finely triangulated.
+Mesh wall() { return test::make_open_cylinder(4.0, 10.0, 512, 40); }
+// Triangles (a, b, c) and (b, a, d) with corners on that wall, given as (degrees round, z).
+Mesh on_wall(const std::vector<std::array<double, 2>>& corners) {
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& [degrees, z] : corners) {
+        const double u = degrees * M_PI / 180.0;
+        points.emplace_back(4.0 * std::cos(u), 4.0 * std::sin(u), z);
+    }
+    return test::make_mesh(points, {{0, 1, 2}, {1, 0, 3}});
 }
 } // namespace
 
@@ -216,14 +229,9 @@ TEST(QualityPolish, ATriangleShortOfACapIsNotFlippedAcrossACrease) {
 // tet10 element bending that edge back onto the wall was inverted, and FEM lost the faces. The
 // other diagonal runs nearly along the axis, 0.01 off, with both triangles above kappa 0.55.
 TEST(QualityPolish, AChordAcrossACurvedWallIsFlippedAlongIt) {
-    const test::OwnedReference input(test::make_open_cylinder(4.0, 10.0, 512, 40));
-    auto on_wall = [](double degrees, double z) {
-        const double u = degrees * M_PI / 180.0;
-        return Eigen::Vector3d(4.0 * std::cos(u), 4.0 * std::sin(u), z);
-    };
+    const test::OwnedReference input(wall());
     // a-b the chord, c above it and d below; both triangles face outwards, as the input does.
-    const Mesh quad = test::make_mesh({on_wall(124.3, 5.936), on_wall(172.4, 6.034), on_wall(139.8, 7.874), on_wall(146.7, 4.224)},
-                                      {{0, 1, 2}, {1, 0, 3}});
+    const Mesh quad = on_wall({{124.3, 5.936}, {172.4, 6.034}, {139.8, 7.874}, {146.7, 4.224}});
     Mesh m = quad;
     EXPECT_EQ(flips(m, input, 0.15 * 2.5), 1);
     EXPECT_TRUE(has_edge(m, 2, 3));
@@ -241,13 +249,8 @@ TEST(QualityPolish, AChordAcrossACurvedWallIsFlippedAlongIt) {
 // wall, over the tolerance of 0.5. A flip whose triangles do not lie on the input is not made
 // (on a thread's crests such flips left edges folded shut).
 TEST(QualityPolish, AChordFlipWhoseTrianglesLeaveTheInputIsNotMade) {
-    const test::OwnedReference input(test::make_open_cylinder(4.0, 10.0, 512, 40));
-    auto on_wall = [](double degrees, double z) {
-        const double u = degrees * M_PI / 180.0;
-        return Eigen::Vector3d(4.0 * std::cos(u), 4.0 * std::sin(u), z);
-    };
-    Mesh m = test::make_mesh({on_wall(90.0, 5.0), on_wall(210.0, 5.0), on_wall(150.0, 8.5), on_wall(150.0, 1.5)},
-                             {{0, 1, 2}, {1, 0, 3}});
+    const test::OwnedReference input(wall());
+    Mesh m = on_wall({{90.0, 5.0}, {210.0, 5.0}, {150.0, 8.5}, {150.0, 1.5}});
     EXPECT_EQ(flips(m, input, 0.5), 0);
     EXPECT_TRUE(has_edge(m, 0, 1));
 }
