@@ -382,6 +382,12 @@ class ModuleHelpersTest(unittest.TestCase):
         np.testing.assert_allclose(closest, [[0.25, 0.5, 0.0], [1.0, 0.5, 0.0], [0.0, 0.0, 0.0]], atol=1e-15)
         with self.assertRaisesRegex(ValueError, "no triangle"):
             native.load().closest_points(queries, square, np.zeros((0, 3), dtype=int))
+        # within `rim` of a corner or an edge: on it
+        near = np.array([[0.999999, 0.5, 1e-9], [1e-7, 1e-7, 0.0], [0.5, 0.4, 0.0]])
+        on_rim = native.load().closest_points(near, square, triangles, rim=1e-5)
+        self.assertEqual(on_rim.tolist(), [[1.0, 0.5, 0.0], [0.0, 0.0, 0.0], [0.5, 0.4, 0.0]])
+        with self.assertRaisesRegex(ValueError, "rim"):
+            native.load().closest_points(queries, square, triangles, rim=-1.0)
 
 
 class FillingTest(unittest.TestCase):
