@@ -358,9 +358,13 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const RepairStats repaired = make_manifold(out);
     report.triangles_removed += repaired.degenerate_removed + repaired.duplicates_removed + repaired.nonmanifold_removed;
     if (params.fill_holes) {
-        const Eigen::Index first_fill = out.triangles.rows();
         HoleFillingParams holes;
         holes.should_fill = hole_is_artefact(*piece.unit, out.points, steps.hole_reach); // Section 5.2.2
+        if (const long darts = remove_darts(out, holes); darts > 0) {
+            report.triangles_removed += darts;
+            remove_unreferenced_vertices(out);
+        }
+        const Eigen::Index first_fill = out.triangles.rows();
         report.holes_filled += fill_holes(out, holes).filled;
         PatchRefinementParams patches = steps.patch_refinement;
         patches.first = first_fill;

@@ -295,6 +295,53 @@ TEST(HoleFilling, PredicateLeavesTheOuterBoundaryOfAPlanarGridOpen) {
     EXPECT_GT(min_kappa(m, before), 0.2);
 }
 
+// A dart: a triangle on the rim of a hole whose third vertex no other triangle uses, jutting
+// across the hole and past its far side, as RLF_7030's slots left one (a site that kept one
+// triangle of its fan). The loop round it crosses itself, and any fill of it folds; without the
+// dart the hole is the 2 x 2 cells' square, filled flat.
+TEST(HoleFilling, ADartJuttingAcrossAHoleIsRemovedBeforeTheFill) {
+    const int n = 10;
+    std::vector<Eigen::Vector3d> pts;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) pts.emplace_back(i, j, 0.0);
+    auto id = [&](int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); };
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            if ((i == 4 || i == 5) && (j == 4 || j == 5)) continue;
+            tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+            tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        }
+    const Mesh holed = make_mesh(pts, tris);
+    const auto dart_tip = static_cast<int32_t>(pts.size());
+    pts.emplace_back(4.5, 6.5, 0.0); // past the hole's far side, y = 6
+    tris.push_back({id(4, 4), id(5, 4), dart_tip});
+    Mesh m = make_mesh(pts, tris);
+    ASSERT_TRUE(topology(m).oriented_manifold());
+    auto inner = [&](const std::vector<int32_t>& loop) { return !contains(loop, id(0, 0)); };
+
+    Mesh folded = m; // filled as it is
+    ASSERT_EQ(fill_holes(folded, {inner}).filled, 1);
+    long facing_down = 0;
+    for (Eigen::Index f = m.triangles.rows(); f < folded.triangles.rows(); ++f)
+        facing_down += (corner(folded, f, 1) - corner(folded, f, 0)).cross(corner(folded, f, 2) - corner(folded, f, 0)).z() < 0.0;
+    EXPECT_GT(facing_down, 0);
+
+    EXPECT_EQ(remove_darts(m, {inner}), 1);
+    EXPECT_EQ(m.triangles, holed.triangles);
+    EXPECT_EQ(remove_darts(m, {inner}), 0);
+    const Eigen::Index before = m.triangles.rows();
+    ASSERT_EQ(fill_holes(m, {inner}).filled, 1);
+    for (Eigen::Index f = before; f < m.triangles.rows(); ++f)
+        EXPECT_GT((corner(m, f, 1) - corner(m, f, 0)).cross(corner(m, f, 2) - corner(m, f, 0)).z(), 0.0);
+    EXPECT_TRUE(topology(m).oriented_manifold());
+    // The sheet's corners at (10, 0) and (0, 10) are such triangles too: the outer boundary is
+    // not a hole to fill, and they stay.
+    Mesh sheet = holed;
+    EXPECT_EQ(remove_darts(sheet, {inner}), 0);
+    EXPECT_EQ(sheet.triangles, holed.triangles);
+}
+
 TEST(HoleFilling, ConvexPlanarHoleGetsTheDelaunayTriangulation) {
     // A convex hole in a plane: its constrained Delaunay triangulation is the Delaunay
     // triangulation of the loop vertices, so no loop vertex may lie inside the circumcircle of a

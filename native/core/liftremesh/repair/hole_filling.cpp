@@ -515,6 +515,40 @@ private:
 
 } // namespace
 
+long remove_darts(Mesh& mesh, const HoleFillingParams& params) {
+    check_indices(mesh, "mesh with holes");
+    long removed = 0;
+    for (;;) {
+        std::vector<int32_t> uses(static_cast<size_t>(mesh.points.rows()), 0);
+        for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+            for (int j = 0; j < 3; ++j) ++uses[static_cast<size_t>(mesh.triangles(f, j))];
+        const std::vector<HoleEdge> edges = hole_edges(mesh.triangles);
+        std::unordered_map<uint64_t, int> edge_triangle;
+        for (const HoleEdge& e : edges) edge_triangle[edge_key(e.from, e.to)] = e.tri;
+        std::vector<char> drop(static_cast<size_t>(mesh.triangles.rows()), 0);
+        long found = 0;
+        for (const auto& loop : trace_loops(edges, mesh.points.rows())) {
+            if (loop.size() < 4 || (params.should_fill && !params.should_fill(loop))) continue;
+            const size_t n = loop.size();
+            for (size_t i = 0; i < n; ++i) {
+                const int32_t prev = loop[(i + n - 1) % n], v = loop[i], next = loop[(i + 1) % n];
+                if (uses[static_cast<size_t>(v)] != 1) continue;
+                const auto in = edge_triangle.find(edge_key(prev, v)), out = edge_triangle.find(edge_key(v, next));
+                if (in == edge_triangle.end() || out == edge_triangle.end() || in->second != out->second) continue;
+                if (!drop[static_cast<size_t>(in->second)]) ++found;
+                drop[static_cast<size_t>(in->second)] = 1;
+            }
+        }
+        if (found == 0) return removed;
+        Triangles kept(mesh.triangles.rows() - found, 3);
+        Eigen::Index row = 0;
+        for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+            if (!drop[static_cast<size_t>(f)]) kept.row(row++) = mesh.triangles.row(f);
+        mesh.triangles = std::move(kept);
+        removed += found;
+    }
+}
+
 std::vector<std::vector<int32_t>> boundary_loops(const Mesh& mesh) {
     return trace_loops(hole_edges(mesh.triangles), mesh.points.rows());
 }

@@ -40,6 +40,15 @@ struct HoleFillingParams {
     std::function<bool(const std::vector<int32_t>&)> should_fill;
 };
 
+//! Removes the darts of the holes to be filled: a triangle two of whose edges are boundary
+//! edges of one loop that `should_fill` accepts (every loop when it is empty), meeting at a
+//! vertex no other triangle uses. That vertex's site kept one triangle of its fan through the
+//! manifold repair, jutting into the hole: the loop then crosses itself round it and any fill
+//! folds (RLF_7030's slots). The loop runs across the dart's third edge instead. Repeated
+//! while some are found; the darts' vertices are left unused (remove_unreferenced_vertices).
+//! Returns the triangles removed.
+long remove_darts(Mesh& mesh, const HoleFillingParams& params);
+
 //! Fills every boundary loop (as given by boundary_loops(), with its convention) for which
 //! `params.should_fill(loop)` is true (all loops when it is empty; loops of fewer than 3
 //! vertices are never offered). Section 5.2.2: a loop of 3 vertices gets its one triangle; a
