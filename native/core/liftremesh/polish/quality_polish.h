@@ -25,8 +25,8 @@
 // - chords: an edge across a curved part of the input (a hole's wall, a fillet) whose midpoint
 //   lies farther than half the tolerance from it is flipped when the other diagonal, along the
 //   surface, lies at most half as far, both new triangles lie on the input and neither is below
-//   kKappaFloorChord (chord_flip_fits_input, flip_rules.h). A chord's sagitta is what a curved FEM element bends back
-//   onto the part, and what the Hausdorff distance measures there;
+//   kKappaFloorChord (chord_flip_fits_input, flip_rules.h). A chord's sagitta is what a curved
+//   FEM element bends back onto the part, and what the Hausdorff distance measures there;
 // - relaxation: a vertex of a triangle below `relax_below`, inside the surface (no boundary
 //   edge) and on a flat fan (its triangles within `flat_angle_deg` of their mean normal: not on
 //   a crease), moves to whichever of a few targets on the input raises the worst kappa of its

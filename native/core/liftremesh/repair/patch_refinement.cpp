@@ -116,9 +116,10 @@ public:
     void write_to(Mesh& mesh, Eigen::Index first) const { mesh_.write_to(mesh, first); }
 
 private:
-    // Cosine of the angle of the use's triangle opposite its edge.
+    // The vertex of the use's triangle opposite its edge.
     Eigen::Vector3d opposite(const EditableMesh::Use& u) const { return mesh_.points[mesh_.tris[u.tri][(u.j + 2) % 3]]; }
 
+    // Cosine of the angle of the use's triangle opposite its edge.
     double opposite_cos(const EditableMesh::Use& u) const {
         const Tri& t = mesh_.tris[u.tri];
         const Eigen::Vector3d c = mesh_.points[t[(u.j + 2) % 3]];
