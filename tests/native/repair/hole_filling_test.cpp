@@ -105,6 +105,25 @@ Mesh saddle_annulus(int m, double amplitude) {
     return make_mesh(pts, tris);
 }
 
+// A 10 x 10 grid of unit squares in z = 0, facing +z, without the 2 x 2 cells around its
+// centre vertex: its points and triangles, and the index of the point (i, j).
+struct GridWithHole {
+    static constexpr int n = 10;
+    std::vector<Eigen::Vector3d> pts;
+    std::vector<std::array<int32_t, 3>> tris;
+    static int32_t id(int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); }
+    GridWithHole() {
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) pts.emplace_back(i, j, 0.0);
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                if ((i == 4 || i == 5) && (j == 4 || j == 5)) continue;
+                tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+                tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+            }
+    }
+};
+
 bool contains(const std::vector<int32_t>& loop, int32_t v) { return std::find(loop.begin(), loop.end(), v) != loop.end(); }
 
 } // namespace
@@ -254,20 +273,9 @@ TEST(HoleFilling, TorusKeepsItsGenus) {
 }
 
 TEST(HoleFilling, PredicateLeavesTheOuterBoundaryOfAPlanarGridOpen) {
-    // 10 x 10 grid in z = 0, facing +z, without the 2 x 2 cells around its centre vertex.
-    const int n = 10;
-    std::vector<Eigen::Vector3d> pts;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) pts.emplace_back(i, j, 0.0);
-    auto id = [&](int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); };
-    std::vector<std::array<int32_t, 3>> tris;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            if ((i == 4 || i == 5) && (j == 4 || j == 5)) continue;
-            tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-            tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-        }
-    Mesh m = make_mesh(pts, tris);
+    const GridWithHole grid;
+    auto id = &GridWithHole::id;
+    Mesh m = make_mesh(grid.pts, grid.tris);
     ASSERT_EQ(boundary_loops(m).size(), 2u);
     ASSERT_EQ(topology(m).chi, 0);
     const int32_t corner_vertex = id(0, 0);
@@ -300,18 +308,10 @@ TEST(HoleFilling, PredicateLeavesTheOuterBoundaryOfAPlanarGridOpen) {
 // triangle of its fan). The loop round it crosses itself, and any fill of it folds; without the
 // dart the hole is the 2 x 2 cells' square, filled flat.
 TEST(HoleFilling, ADartJuttingAcrossAHoleIsRemovedBeforeTheFill) {
-    const int n = 10;
-    std::vector<Eigen::Vector3d> pts;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) pts.emplace_back(i, j, 0.0);
-    auto id = [&](int i, int j) { return static_cast<int32_t>(j * (n + 1) + i); };
-    std::vector<std::array<int32_t, 3>> tris;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            if ((i == 4 || i == 5) && (j == 4 || j == 5)) continue;
-            tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-            tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-        }
+    GridWithHole grid;
+    auto id = &GridWithHole::id;
+    auto& pts = grid.pts;
+    auto& tris = grid.tris;
     const Mesh holed = make_mesh(pts, tris);
     const auto dart_tip = static_cast<int32_t>(pts.size());
     pts.emplace_back(4.5, 6.5, 0.0); // past the hole's far side, y = 6
