@@ -103,7 +103,8 @@ FIELDS = {
     "crease_sites": "sites held still on the creases over the feature angle and on their corners (hold_creases; 0 when off)",
     "sites_split": "sites whose restricted cell came in pieces that do not touch, a vertex each",
     "holes_filled": "holes of the triangulation filled (those not along the input's own boundary)",
-    "triangles_removed": "triangles removed by the manifold repair, and flaps beyond an open input's boundary",
+    "triangles_removed": "triangles removed by the manifold repair, darts jutting into the holes it fills, and "
+                         "flaps beyond an open input's boundary",
     "edges_collapsed": "short edges collapsed, and pairs of triangles folded shut taken out",
     "vertices_inserted": "input points inserted where a sharp edge came out cut off, or at an acute "
                          "corner of an open input's boundary",

@@ -43,8 +43,9 @@ struct RemeshReport {
     long crease_sites = 0;               //!< sites held on the creases and their corners (crease_sites.h)
     long sites_split = 0;                //!< sites whose restricted cell came in pieces, a vertex each (rdt.h)
     long holes_filled = 0;
-    long triangles_removed = 0;          //!< by the manifold repair (repair.h), and flaps beyond an open
-                                         //!< input's boundary (boundary_snap.h)
+    long triangles_removed = 0;          //!< by the manifold repair (repair.h), darts jutting into the holes
+                                         //!< it fills (hole_filling.h), and flaps beyond an open input's
+                                         //!< boundary (boundary_snap.h)
     long edges_collapsed = 0;            //!< short edges and pairs folded shut collapsed (edge_collapse.h)
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off
