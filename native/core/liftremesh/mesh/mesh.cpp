@@ -276,6 +276,13 @@ void remove_unreferenced_vertices(Mesh& mesh) {
     mesh = compacted(mesh, mesh.triangles.rows(), [](Eigen::Index f) { return f; });
 }
 
+void drop_triangles(Mesh& mesh, const std::vector<char>& drop) {
+    Eigen::Index kept = 0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        if (!drop[static_cast<size_t>(f)]) mesh.triangles.row(kept++) = mesh.triangles.row(f);
+    mesh.triangles.conservativeResize(kept, Eigen::NoChange);
+}
+
 Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids) {
     return compacted(mesh, static_cast<Eigen::Index>(ids.size()), [&ids](Eigen::Index k) { return ids[k]; });
 }

@@ -154,6 +154,10 @@ void check_extent(const Mesh& mesh, const char* what);
 //! first use).
 void remove_unreferenced_vertices(Mesh& mesh);
 
+//! Drops the triangles f with drop[f] set (#F entries), keeping the others in their order; the
+//! vertices stay (remove_unreferenced_vertices).
+void drop_triangles(Mesh& mesh, const std::vector<char>& drop);
+
 //! The triangles `ids` of `mesh` (rows in that order) with the vertices they use, in order of
 //! first use.
 Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids);

@@ -48,6 +48,13 @@ std::vector<HoleEdge> hole_edges(const Triangles& triangles) {
 // (every boundary vertex of an oriented manifold has as many hole edges in as out) the walk
 // can only stop at its start; a walk stuck elsewhere (inconsistent orientation) is dropped.
 // Every edge is used once: O(#edges).
+// Each boundary edge's one triangle, by edge_key.
+std::unordered_map<uint64_t, int> triangle_of_edge(const std::vector<HoleEdge>& edges) {
+    std::unordered_map<uint64_t, int> out;
+    for (const HoleEdge& e : edges) out[edge_key(e.from, e.to)] = e.tri;
+    return out;
+}
+
 std::vector<std::vector<int32_t>> trace_loops(const std::vector<HoleEdge>& edges, Eigen::Index num_vertices) {
     const auto nv = static_cast<size_t>(num_vertices);
     std::vector<int> first(nv + 1, 0); // out-edges of v: order[first[v] .. first[v + 1])
@@ -523,8 +530,7 @@ long remove_darts(Mesh& mesh, const HoleFillingParams& params) {
         for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
             for (int j = 0; j < 3; ++j) ++uses[static_cast<size_t>(mesh.triangles(f, j))];
         const std::vector<HoleEdge> edges = hole_edges(mesh.triangles);
-        std::unordered_map<uint64_t, int> edge_triangle;
-        for (const HoleEdge& e : edges) edge_triangle[edge_key(e.from, e.to)] = e.tri;
+        const std::unordered_map<uint64_t, int> edge_triangle = triangle_of_edge(edges);
         std::vector<char> drop(static_cast<size_t>(mesh.triangles.rows()), 0);
         long found = 0;
         for (const auto& loop : trace_loops(edges, mesh.points.rows())) {
@@ -540,11 +546,7 @@ long remove_darts(Mesh& mesh, const HoleFillingParams& params) {
             }
         }
         if (found == 0) return removed;
-        Triangles kept(mesh.triangles.rows() - found, 3);
-        Eigen::Index row = 0;
-        for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-            if (!drop[static_cast<size_t>(f)]) kept.row(row++) = mesh.triangles.row(f);
-        mesh.triangles = std::move(kept);
+        drop_triangles(mesh, drop);
         removed += found;
     }
 }
@@ -561,8 +563,7 @@ HoleFillingStats fill_holes(Mesh& mesh, const HoleFillingParams& params) {
     const auto loops = trace_loops(edges, nv);
     if (loops.empty()) return {};
 
-    std::unordered_map<uint64_t, int> edge_triangle; // boundary edge -> its one triangle
-    for (const HoleEdge& e : edges) edge_triangle[edge_key(e.from, e.to)] = e.tri;
+    const std::unordered_map<uint64_t, int> edge_triangle = triangle_of_edge(edges);
     EdgeSet existing;
     existing.reserve(static_cast<size_t>(3 * mesh.triangles.rows() / 2 + 1));
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)

@@ -122,7 +122,7 @@ private:
     // Cosine of the angle of the use's triangle opposite its edge.
     double opposite_cos(const EditableMesh::Use& u) const {
         const Tri& t = mesh_.tris[u.tri];
-        const Eigen::Vector3d c = mesh_.points[t[(u.j + 2) % 3]];
+        const Eigen::Vector3d c = opposite(u);
         const Eigen::Vector3d e1 = mesh_.points[t[u.j]] - c, e2 = mesh_.points[t[(u.j + 1) % 3]] - c;
         const double n = e1.norm() * e2.norm();
         return n > 0.0 ? e1.dot(e2) / n : 1.0;

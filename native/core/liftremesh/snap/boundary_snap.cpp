@@ -304,10 +304,7 @@ long remove_flaps(Mesh& output, const OutputBoundary& boundary, const VertexMove
         }
     }
     if (removed == 0) return 0;
-    Eigen::Index kept = 0;
-    for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
-        if (!drop[f]) output.triangles.row(kept++) = output.triangles.row(f);
-    output.triangles.conservativeResize(kept, Eigen::NoChange);
+    drop_triangles(output, drop);
     remove_unreferenced_vertices(output);
     return removed;
 }
