@@ -208,9 +208,12 @@ class MacroApiTest(unittest.TestCase):
         """The same part at 3000 vertices with local sizing and the creases held: a hole its slots
         leave had a dart (a triangle whose vertex kept no other) jutting across it, the loop
         crossed itself, and its fill lay flat facing into the part: kappa min 0.014 and 9 folded
-        edges. The darts now go before the fill (hole_filling.h: remove_darts): kappa min 0.23,
-        one edge folded across the 0.09 mm step, where issue 35's 0.3 is still short
-        (docs/known-gaps.md)."""
+        edges. The darts now go before the fill (hole_filling.h: remove_darts). A crease point of
+        the top rim of a 0.09 mm step, inserted into a flange triangle beside the bottom rim,
+        stood a triangle over the step's wall facing into the part, and the next point folded
+        one onto it; no split turns a triangle over on the input now (flip_rules.h:
+        faces_against_input). What is left short of issue 35's 0.3: kappa min 0.23, on the top
+        face over a slot's ceiling 0.1 mm below it (docs/known-gaps.md)."""
         shape = step_part("RLF_7030.stp")
         from LiftRemesh import meshing, parameters
         values = parameters.resolve({})
@@ -219,7 +222,7 @@ class MacroApiTest(unittest.TestCase):
         points, triangles = mesh_checks.arrays(result.mesh)
         self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles), "not a closed oriented manifold")
         self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2)
-        self.assertLessEqual(result.report["output"]["folded_edges"], 1)
+        self.assertEqual(result.report["output"]["folded_edges"], 0)
         self.assertGreater(result.report["output"]["kappa_min"], 0.2)
 
     def test_an_open_face_keeps_its_borders_without_a_warning(self):

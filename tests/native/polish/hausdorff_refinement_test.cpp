@@ -164,3 +164,36 @@ TEST(HausdorffRefinement, CapAndLargestDistanceLimitWhatIsInserted) {
     p.max_distance = 0.0;
     EXPECT_THROW(refine_towards_input(far, test::OwnedReference(input), p), InvalidInput);
 }
+
+// A step lower than the edge length whose wall leans out over the floor (RLF_7030's terminals):
+// the floor z = 0 (0 <= x <= 1), the wall up to its top rim at x = 0.03, z = 0.09, and the top
+// z = 0.09 (x <= 0.03). The mesh runs along the floor to the bottom rim and across the top rim
+// by a chamfer to x = -0.3. A point of the top rim lies nearer the floor's triangles than the
+// chamfer: splitting one of them there stood a triangle on the bottom rim leaning back over the
+// wall, facing into the part, and the next point inserted beside it folded a triangle onto it.
+TEST(HausdorffRefinement, APointOverALowStepsWallStandsNoTriangleAgainstIt) {
+    constexpr double kRim = 0.03, kStep = 0.09;
+    const Mesh input = strips({row(1, 0, 1, kColumns * kSpacing), row(0, 0, 1, kColumns * kSpacing),
+                               row(kRim, kStep, 1, kColumns * kSpacing), row(-1, kStep, 1, kColumns * kSpacing)});
+    auto stepped = [&] {
+        return strips({row(1, 0, kColumns, kSpacing), row(0.5, 0, kColumns, kSpacing), row(0, 0, kColumns, kSpacing),
+                       row(-0.3, kStep, kColumns, kSpacing), row(-1, kStep, kColumns, kSpacing)});
+    };
+    Mesh m = stepped();
+    const test::Topology before = test::topology(m);
+    const HausdorffRefinementStats stats = refine_towards_input(m, test::OwnedReference(input), params_for(kSpacing));
+    EXPECT_GT(stats.inserted, 0);
+    const test::Topology after = test::topology(m);
+    EXPECT_TRUE(after.oriented_manifold());
+    EXPECT_EQ(after.chi, before.chi);
+    // No triangle is turned over, by more than 150 degrees, from the input's triangle nearest to
+    // its centroid (those across the top rim lean over the wall, by up to about 115 degrees).
+    const AabbTree tree(input);
+    for (Eigen::Index t = 0; t < m.triangles.rows(); ++t) {
+        const Eigen::Vector3d a = m.points.row(m.triangles(t, 0)).transpose(), b = m.points.row(m.triangles(t, 1)).transpose(),
+                              c = m.points.row(m.triangles(t, 2)).transpose();
+        const ClosestPoint near = tree.closest((a + b + c) / 3.0);
+        EXPECT_GT((b - a).cross(c - a).normalized().dot(tree.triangle_normal(near.triangle)), -std::sqrt(3.0) / 2.0)
+            << "triangle " << t;
+    }
+}

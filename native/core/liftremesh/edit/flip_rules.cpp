@@ -42,6 +42,12 @@ bool lies_on_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const A
 }
 } // namespace
 
+bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input) {
+    const ClosestPoint near = input.closest((mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0);
+    const Eigen::Vector3d n = mesh.normal(t);
+    return near.triangle >= 0 && n.dot(input.triangle_normal(near.triangle)) < kCosCap * n.norm();
+}
+
 DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input) {
     const std::vector<Eigen::Vector3d>& x = mesh.points;
     auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };

@@ -61,6 +61,15 @@ struct TriangleNearInput {
 };
 TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
 
+//! Whether triangle t lies turned over on the input: its normal turned by more than 150 degrees
+//! (kCosCap) from that of the input's triangle nearest to its centroid. A vertex inserted a
+//! little off the plane of the triangle it splits, beside an edge (a crease point over the rim of
+//! a step lower than the edge is long), stands the triangle on that edge up over the step's wall,
+//! facing into the part: its parent's side alone does not show it. A triangle across a feature
+//! smaller than itself leans against the facets it passes by less (a scan's antenna, the top rim
+//! of such a step).
+bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
 //! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
 //! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the
 //! input (`before`) and that of the other diagonal at most half as far (`after`), neither new

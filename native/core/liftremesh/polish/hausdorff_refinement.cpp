@@ -163,7 +163,8 @@ private:
             double worst = 2.0;
             bool ok = true;
             auto check = [&](const Tri& made, int parent) {
-                ok = ok && mesh_.normal(made).dot(mesh_.normal(mesh_.tris[parent])) > 0.0;
+                ok = ok && mesh_.normal(made).dot(mesh_.normal(mesh_.tris[parent])) > 0.0 &&
+                     !faces_against_input(mesh_, made, input_);
                 worst = std::min(worst, mesh_.kappa(made));
             };
             for (const auto& [f, made] : split.replace) check(made, f);

@@ -10,7 +10,8 @@
 //   output is a witness of a chamfer, and the farthest of them is the crease point;
 // - each witness, farthest first, is inserted where it is nearest to the output: splitting
 //   that triangle or one of its edges, whichever leaves the best triangles, and only if no
-//   triangle made is worse than kappa_floor (Eq. 26) or turned over;
+//   triangle made is worse than kappa_floor (Eq. 26), turned over from the one it comes from,
+//   or turned over on the input (flip_rules.h: faces_against_input);
 // - edges near the insertions are then flipped where the other diagonal of their quad lies
 //   at most half as far from the input (the edge that cut across the crease), or where a
 //   quality flip of a nearly planar quad raises the worse kappa without moving the surface away
