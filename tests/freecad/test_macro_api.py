@@ -212,8 +212,9 @@ class MacroApiTest(unittest.TestCase):
         the top rim of a 0.09 mm step, inserted into a flange triangle beside the bottom rim,
         stood a triangle over the step's wall facing into the part, and the next point folded
         one onto it; no split turns a triangle over on the input now (flip_rules.h:
-        faces_against_input). What is left short of issue 35's 0.3: kappa min 0.23, on the top
-        face over a slot's ceiling 0.1 mm below it (docs/known-gaps.md)."""
+        faces_against_input). On the top face over a slot's ceiling 0.1 mm below it, the polish
+        left a vertex inside a thin kite, kappa 0.23; the triangles under 0.3 are mended last
+        (edge_collapse.h: mend_poor_triangles): issue 35's bar is met."""
         shape = step_part("RLF_7030.stp")
         from LiftRemesh import meshing, parameters
         values = parameters.resolve({})
@@ -223,7 +224,7 @@ class MacroApiTest(unittest.TestCase):
         self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles), "not a closed oriented manifold")
         self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2)
         self.assertEqual(result.report["output"]["folded_edges"], 0)
-        self.assertGreater(result.report["output"]["kappa_min"], 0.2)
+        self.assertGreaterEqual(result.report["output"]["kappa_min"], 0.3)
 
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""

@@ -401,6 +401,9 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     report.edges_flipped += onto_crease.flipped + polished.flipped;
     report.vertices_moved += onto_crease.moved + polished.moved;
     report.edges_collapsed += collapse_folded_pairs(out, reference, steps.folded_pairs).collapsed;
+    const PoorTriangleStats mended = mend_poor_triangles(out, reference);
+    report.edges_collapsed += mended.collapsed;
+    report.vertices_inserted += mended.split;
     clock.end();
     return out;
 }

@@ -227,3 +227,94 @@ TEST(FoldedPairs, RefusesParametersOutOfRange) {
                                       FoldedPairParams{150.0, 0.25, 0.3, 0.0}, FoldedPairParams{150.0, 0.25, 0.3, 180.0}})
         EXPECT_THROW(collapse_folded_pairs(m, {m, tree}, p), InvalidInput);
 }
+
+namespace {
+// The 4 x 4 grid of make_square(4, 4) with its middle vertex (2, 2) moved to (2.45, 1.55, z),
+// next to the edge (2, 1)-(3, 2) of its fan: a sliver there, as a polish leaves a vertex of a thin
+// kite at its neighbours' centroid.
+Mesh with_sliver(double z) {
+    Mesh m = test::make_square(4.0, 4);
+    m.points.row(12) << 2.45, 1.55, z;
+    return m;
+}
+} // namespace
+
+TEST(PoorTriangles, AVertexBesideAnEdgeOfItsFanIsCollapsed) {
+    const Mesh input = test::make_square(4.0, 4);
+    Mesh m = with_sliver(0.0);
+    const double before = test::min_kappa(m);
+    ASSERT_LT(before, 0.1);
+    const test::Topology was = test::topology(m);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed, 1);
+    EXPECT_EQ(stats.split, 0);
+    EXPECT_EQ(m.points.rows(), input.points.rows() - 1);
+    EXPECT_GT(test::min_kappa(m), std::max(0.25, 4 * before)); // the hexagon fanned from one corner
+    const test::Topology is = test::topology(m);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, was.chi);
+    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+    EXPECT_EQ(m.points.col(2).cwiseAbs().maxCoeff(), 0.0); // still the square
+}
+
+TEST(PoorTriangles, APoorTriangleOfBoundaryVerticesHasItsLongEdgeSplit) {
+    // Two triangles on the edge a-b, every vertex on the boundary: no collapse may move it. The
+    // apex c lies 0.12 from the middle of a-b.
+    const Mesh input = test::make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 0.12, 0}, {0.5, -0.6, 0}}, {{0, 1, 2}, {1, 0, 3}});
+    Mesh m = input;
+    const double before = test::min_kappa(m);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed, 0);
+    EXPECT_EQ(stats.split, 1);
+    ASSERT_EQ(m.points.rows(), 5);
+    EXPECT_TRUE(m.points.row(4).isApprox(Eigen::RowVector3d(0.5, 0, 0)));
+    EXPECT_EQ(m.triangles.rows(), 4);
+    EXPECT_GT(test::min_kappa(m), std::max(0.3, 2 * before));
+    const test::Topology is = test::topology(m);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, 1);
+    EXPECT_EQ(is.boundary_edges, 4);
+}
+
+TEST(PoorTriangles, APoorTriangleOffTheFlatIsLeft) {
+    // The sliver's vertex 0.3 above the square: its fan is no plane a collapse would keep, and
+    // its long edge's two triangles turn by 77 degrees.
+    const Mesh input = with_sliver(0.3);
+    Mesh m = input;
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed + stats.split, 0);
+    EXPECT_EQ(m.points, input.points);
+    EXPECT_EQ(m.triangles, input.triangles);
+}
+
+TEST(PoorTriangles, NoBoundaryVertexIsCollapsedAway) {
+    // A rim L-B-R along y = 0 and V 0.1 above B: slivers (L, B, V) and (B, R, V). B's fan is flat,
+    // V's is not (the vertex above it lifted): only B could go, and the rim would then run
+    // through V, inside the surface.
+    const std::vector<Eigen::Vector3d> p = {
+        {-1, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0, 0.1, 0},   // L, B, R, V
+        {-1, 1, 0}, {0, 1.2, 0.5}, {1, 1, 0},             // P1, P2 (lifted), P3
+        {-2, 0, 0}, {-2, 1, 0}, {2, 0, 0}, {2, 1, 0}};    // LL, Q1, RR, Q3
+    enum { L, B, R, V, P1, P2, P3, LL, Q1, RR, Q3 };
+    const Mesh before = test::make_mesh(p, {{L, B, V}, {B, R, V}, {R, P3, V}, {V, P3, P2}, {V, P2, P1}, {V, P1, L},
+                                            {LL, L, Q1}, {Q1, L, P1}, {R, RR, Q3}, {R, Q3, P3}});
+    ASSERT_LT(test::min_kappa(before), 0.3);
+    Mesh m = before;
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(before));
+    EXPECT_EQ(stats.collapsed, 0);
+    bool b_kept = false;
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v) b_kept = b_kept || m.points.row(v).isZero();
+    EXPECT_TRUE(b_kept);
+    EXPECT_TRUE(test::topology(m).oriented_manifold());
+}
+
+TEST(PoorTriangles, RefusesParametersOutOfRange) {
+    Mesh m = test::make_square(1.0, 2);
+    const test::OwnedReference input(m);
+    PoorTriangleParams p;
+    p.kappa_below = 1.5;
+    EXPECT_THROW(mend_poor_triangles(m, input, p), InvalidInput);
+    p = PoorTriangleParams{};
+    p.flat_angle_deg = 90.0;
+    EXPECT_THROW(mend_poor_triangles(m, input, p), InvalidInput);
+}

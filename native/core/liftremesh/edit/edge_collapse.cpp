@@ -16,6 +16,9 @@ namespace liftremesh {
 
 namespace {
 
+// Two triangles turned onto each other: by more than 150 degrees.
+const double kCosFolded = -std::sqrt(3.0) / 2.0;
+
 struct Adjacency {
     std::vector<std::vector<int32_t>> triangles_of; // per vertex, live triangles using it
     std::vector<char> alive;                        // per triangle
@@ -95,6 +98,20 @@ public:
             for (int j = 0; j < 3; ++j) adj_.triangles_of[mesh.triangles(f, j)].push_back(static_cast<int32_t>(f));
     }
 
+    //! Whether v may be collapsed away by the mending of poor triangles: not on the boundary,
+    //! whose shape it would change, and every triangle around it turned from their mean normal
+    //! by less than acos(min_cos).
+    bool may_go(int32_t v, double min_cos) const {
+        if (on_boundary_[v]) return false;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (int32_t f : adj_.triangles_of[v]) mean += normal_of(f);
+        if (!(mean.norm() > 0.0)) return false;
+        mean.normalize();
+        for (int32_t f : adj_.triangles_of[v])
+            if (!(normal_of(f).dot(mean) >= min_cos)) return false;
+        return true;
+    }
+
     //! Smallest kappa of the triangles around the given vertices.
     double worst_kappa_around(std::initializer_list<int32_t> vertices) const {
         double worst = 1.0;
@@ -125,6 +142,16 @@ public:
         if (found != 2 || q[0] < 0 || q[1] < 0) return std::nullopt;
         return q;
     }
+
+    //! Smaller kappa of the two triangles of edge a-b (2 if it has not two).
+    double worst_kappa_of_edge(int32_t a, int32_t b) const {
+        const auto q = quad(a, b);
+        if (!q) return 2.0;
+        return std::min(kappa_of(mesh_, corners(mesh_, (*q)[0])), kappa_of(mesh_, corners(mesh_, (*q)[1])));
+    }
+
+    //! Whether triangle f is still there (not taken out by a collapse).
+    bool alive(int32_t f) const { return adj_.alive[f] != 0; }
 
     //! Whether a and b are joined by an edge.
     bool joined(int32_t a, int32_t b) const {
@@ -164,8 +191,8 @@ public:
 
     //! Collapses edge a-b onto one of its end points if that keeps an oriented manifold with the
     //! same Euler characteristic (see collapse_short_edges) and the new fan's worst kappa is above
-    //! `must_beat`. Returns whether it did.
-    bool collapse(int32_t a, int32_t b, double must_beat) {
+    //! `must_beat`; an end point whose `may_go` is false is the one kept. Returns whether it did.
+    bool collapse(int32_t a, int32_t b, double must_beat, bool a_may_go = true, bool b_may_go = true) {
         // The edge must still exist with exactly two triangles, whose opposite vertices are the
         // only common neighbours of a and b (link condition: the collapse keeps a manifold).
         std::vector<int32_t> shared, opposite;
@@ -188,8 +215,8 @@ public:
         for (int32_t v : opposite) low_valence = low_valence || adj_.triangles_of[v].size() <= 3;
         if (low_valence) return false;
 
-        const double keep_a = try_collapse(mesh_, adj_, a, b, must_beat);
-        const double keep_b = try_collapse(mesh_, adj_, b, a, must_beat);
+        const double keep_a = b_may_go ? try_collapse(mesh_, adj_, a, b, must_beat) : -1.0;
+        const double keep_b = a_may_go ? try_collapse(mesh_, adj_, b, a, must_beat) : -1.0;
         if (keep_a < 0.0 && keep_b < 0.0) return false;
         bool a_stays = keep_a >= 0.0;
         if (keep_a >= 0.0 && keep_b >= 0.0) a_stays = angle_defect(mesh_, adj_, a) >= angle_defect(mesh_, adj_, b);
@@ -210,6 +237,59 @@ public:
         return true;
     }
 
+    //! Splits the interior edge a-b at p into four triangles if none of them turns from the one it
+    //! comes from by more than 45 degrees and their worst kappa is above `must_beat`. Returns
+    //! whether it did.
+    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat) {
+        const auto q = quad(a, b);
+        if (!q) return false;
+        const auto [f1, f2, c, d] = *q;
+        // Not an edge across a crease or a fold, whose halves would stay one.
+        if (c == d || !(normal_of(f1).dot(normal_of(f2)) >= std::cos(M_PI / 4))) return false;
+        const std::array<std::pair<int32_t, std::array<int32_t, 3>>, 4> made = {
+            {{f1, {a, -1, c}}, {f1, {-1, b, c}}, {f2, {b, -1, d}}, {f2, {-1, a, d}}}};
+        for (const auto& [parent, t] : made) {
+            Eigen::Vector3d x[3];
+            for (int j = 0; j < 3; ++j) x[j] = t[j] < 0 ? p : position(mesh_, t[j]);
+            const Eigen::Vector3d n = triangle_normal(x[0], x[1], x[2]), was = normal_of(parent);
+            if (!(n.dot(was) >= std::cos(M_PI / 4)) || !(triangle_kappa(x[0], x[1], x[2]) > must_beat)) return false;
+            // Nor folds onto the triangle across its edge of the quad's rim, unless its parent
+            // was folded so already (and it is no more).
+            const int32_t u = t[0] < 0 ? t[1] : t[0], v = t[2];
+            const int32_t across = other_triangle(u, v, parent);
+            if (across < 0) continue;
+            const double turn = normal_of(across).dot(n), turn_was = normal_of(across).dot(was);
+            if (!(turn >= std::min(turn_was, kCosFolded))) return false;
+        }
+        const auto m = static_cast<int32_t>(mesh_.points.rows());
+        mesh_.points.conservativeResize(m + 1, 3);
+        mesh_.points.row(m) = p.transpose();
+        const auto f3 = static_cast<int32_t>(mesh_.triangles.rows());
+        mesh_.triangles.conservativeResize(f3 + 2, 3);
+        adj_.alive.resize(f3 + 2, 1);
+        adj_.triangles_of.emplace_back();
+        on_boundary_.push_back(0);
+        const std::array<int32_t, 4> rows = {f1, f3, f2, f3 + 1};
+        drop(b, f1);
+        drop(a, f2);
+        for (int k = 0; k < 4; ++k) {
+            std::array<int32_t, 3> t = made[k].second;
+            for (int32_t& v : t)
+                if (v < 0) v = m;
+            mesh_.triangles.row(rows[k]) << t[0], t[1], t[2];
+        }
+        // Fans: m in all four; c and d in one new triangle each; a in f1 and f3 + 1; b in f3 and f2.
+        adj_.triangles_of[m] = {f1, f3, f2, f3 + 1};
+        adj_.triangles_of[c].push_back(f3);
+        adj_.triangles_of[d].push_back(f3 + 1);
+        adj_.triangles_of[a].push_back(f3 + 1);
+        adj_.triangles_of[b].push_back(f3);
+        ++split_;
+        return true;
+    }
+
+    long splits() const { return split_; }
+
     //! Removes the dead triangles and the vertices no triangle uses. Returns the collapses.
     long finish() {
         if (collapsed_ == 0) return 0;
@@ -224,6 +304,21 @@ public:
     }
 
 private:
+    //! The live triangle other than f on edge u-v, or -1 if there is none.
+    int32_t other_triangle(int32_t u, int32_t v, int32_t f) const {
+        for (int32_t g : adj_.triangles_of[u]) {
+            if (g == f) continue;
+            const auto t = corners(mesh_, g);
+            if (std::find(t.begin(), t.end(), v) != t.end()) return g;
+        }
+        return -1;
+    }
+
+    Eigen::Vector3d normal_of(int32_t f) const {
+        const auto t = corners(mesh_, f);
+        return triangle_normal(position(mesh_, t[0]), position(mesh_, t[1]), position(mesh_, t[2]));
+    }
+
     void drop(int32_t v, int32_t f) {
         auto& list = adj_.triangles_of[v];
         list.erase(std::remove(list.begin(), list.end(), f), list.end());
@@ -233,6 +328,7 @@ private:
     Adjacency adj_;
     std::vector<char> on_boundary_;
     long collapsed_ = 0;
+    long split_ = 0;
 };
 
 } // namespace
@@ -256,6 +352,49 @@ ShortEdgeStats collapse_short_edges(Mesh& mesh, const ShortEdgeParams& params) {
     Collapser collapser(mesh);
     for (const auto& [length, a, b] : candidates) collapser.collapse(a, b, collapser.worst_kappa_around({a, b}));
     return {collapser.finish()};
+}
+
+PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, const PoorTriangleParams& params) {
+    if (!(params.kappa_below >= 0.0 && params.kappa_below <= 1.0) ||
+        !(params.flat_angle_deg > 0.0 && params.flat_angle_deg < 90.0))
+        throw InvalidInput("mend_poor_triangles: kappa_below must lie in [0, 1] and flat_angle_deg in (0, 90)");
+    check_indices(mesh, "poor triangles' mesh");
+    std::vector<std::pair<double, int32_t>> poor; // (kappa, triangle), worst first
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        if (const double k = kappa_of(mesh, corners(mesh, static_cast<int32_t>(f))); k < params.kappa_below)
+            poor.emplace_back(k, static_cast<int32_t>(f));
+    if (poor.empty()) return {};
+    std::sort(poor.begin(), poor.end());
+    const double min_cos = std::cos(params.flat_angle_deg * M_PI / 180.0);
+    Collapser collapser(mesh);
+    for (const auto& [kappa, f] : poor) {
+        if (!collapser.alive(f)) continue; // taken out by an earlier collapse
+        const auto t = corners(mesh, f);
+        if (kappa_of(mesh, t) != kappa) continue; // changed by an earlier split
+        bool mended = false;
+        for (int j = 0; j < 3 && !mended; ++j) {
+            const int32_t a = t[j], b = t[(j + 1) % 3];
+            const bool a_may_go = collapser.may_go(a, min_cos), b_may_go = collapser.may_go(b, min_cos);
+            mended = (a_may_go || b_may_go) &&
+                     collapser.collapse(a, b, collapser.worst_kappa_around({a, b}), a_may_go, b_may_go);
+        }
+        if (mended) continue;
+        // The longest edge, split where its midpoint is nearest on the input.
+        int longest = 0;
+        double length = -1.0;
+        for (int j = 0; j < 3; ++j)
+            if (const double l = (position(mesh, t[j]) - position(mesh, t[(j + 1) % 3])).norm(); l > length) {
+                length = l;
+                longest = j;
+            }
+        const int32_t a = t[longest], b = t[(longest + 1) % 3];
+        const ClosestPoint p = reference.tree.closest(0.5 * (position(mesh, a) + position(mesh, b)));
+        if (p.triangle >= 0) collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b));
+    }
+    PoorTriangleStats stats;
+    stats.split = collapser.splits();
+    stats.collapsed = collapser.finish();
+    return stats;
 }
 
 FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& reference, const FoldedPairParams& params) {

@@ -35,6 +35,35 @@ struct ShortEdgeParams {
 //! number of collapses (ShortEdgeStats::collapsed); unreferenced vertices are removed.
 ShortEdgeStats collapse_short_edges(Mesh& mesh, const ShortEdgeParams& params);
 
+struct PoorTriangleParams {
+    //! A triangle whose kappa (Eq. 26) is under this has its edges tried for a collapse. In [0, 1].
+    double kappa_below = kKappaFloor;
+    //! The vertex a collapse removes lies on a flat fan: every triangle around it within this
+    //! many degrees of their mean normal, so that the triangles the collapse leaves cover the
+    //! plane its fan did, and stay on the input. In (0, 90).
+    double flat_angle_deg = 8.0;
+};
+
+struct PoorTriangleStats {
+    long collapsed = 0; //!< edges collapsed, each a vertex fewer
+    long split = 0;     //!< edges split, each a vertex more
+};
+
+//! Mends each triangle under params.kappa_below, worst first, as a remesher's last sliver
+//! removal does (MMG, CGAL): the polish moves a vertex to its neighbours' centroid and flips the
+//! edges of flat quads, and neither helps a vertex sitting inside a thin kite at the centroid
+//! already, whose long edge would cross a crease if flipped.
+//! - A collapse: each of its edges onto one end point, the other inside the surface (not on its
+//!   boundary) on a flat fan (params.flat_angle_deg), under the rules of collapse_short_edges;
+//!   the first allowed.
+//! - Else a split of its longest edge, an interior one, at the input's point nearest to its
+//!   midpoint, if none of the four triangles made turns from the one it comes from by more than
+//!   45 degrees and their worst kappa is above that of the edge's two triangles.
+//! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
+//! vertices are removed; added ones are appended.
+//! \throw InvalidInput if a parameter is out of range or an index is.
+PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& input, const PoorTriangleParams& params = {});
+
 struct FoldedPairStats {
     long collapsed = 0; //!< pairs removed, each two triangles and a vertex
 };
