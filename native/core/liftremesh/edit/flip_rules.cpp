@@ -48,6 +48,37 @@ bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, c
     return near.triangle >= 0 && n.dot(input.triangle_normal(near.triangle)) < kCosCap * n.norm();
 }
 
+bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
+    const double cos_folded = std::cos(170.0 * M_PI / 180.0);
+    auto folded = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+        return u.dot(v) < cos_folded * u.norm() * v.norm();
+    };
+    // The triangle other than the quad's on edge u-v, or -1.
+    auto across = [&](int32_t u, int32_t v) {
+        for (int32_t w : {u, v})
+            for (const int32_t* t = fans.begin(w); t != fans.end(w); ++t) {
+                if (*t == q.t1 || *t == q.t2) continue;
+                const EditableMesh::Tri& x = mesh.tris[*t];
+                if (std::find(x.begin(), x.end(), u) != x.end() && std::find(x.begin(), x.end(), v) != x.end()) return *t;
+            }
+        return -1;
+    };
+    const auto [n1, n2] = EditableMesh::flipped(q); // (a, d, c) and (d, b, c)
+    // Each rim edge with its old triangle and its new one.
+    const struct {
+        int32_t u, v;
+        int old_tri;
+        const EditableMesh::Tri& made;
+    } rim[4] = {{q.c, q.a, q.t1, n1}, {q.a, q.d, q.t2, n1}, {q.d, q.b, q.t2, n2}, {q.b, q.c, q.t1, n2}};
+    for (const auto& e : rim) {
+        const int t = across(e.u, e.v);
+        if (t < 0) continue;
+        const Eigen::Vector3d n = mesh.normal(mesh.tris[t]);
+        if (folded(mesh.normal(e.made), n) && !folded(mesh.normal(mesh.tris[e.old_tri]), n)) return true;
+    }
+    return false;
+}
+
 DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input) {
     const std::vector<Eigen::Vector3d>& x = mesh.points;
     auto distance = [&](const Eigen::Vector3d& p) { return std::sqrt(input.closest(p).squared_distance); };

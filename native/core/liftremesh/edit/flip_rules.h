@@ -6,6 +6,7 @@
 // at the diagonals' midpoints or at seven points of each triangle.
 #pragma once
 
+#include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/editable_mesh.h"
 #include "liftremesh/spatial/aabb_tree.h"
 
@@ -69,6 +70,14 @@ TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMe
 //! smaller than itself leans against the facets it passes by less (a scan's antenna, the top rim
 //! of such a step).
 bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
+//! Whether flipping the quad's edge folds one of the new triangles onto the triangle across
+//! the quad's rim (their normals turned by more than 170 degrees, as the report counts folded
+//! edges) where the old one on that rim edge was not folded so. `fans` is mesh.fans(), possibly
+//! made before other flips of the same pass: a triangle flipped since keeps two of its corners,
+//! so the triangle across a rim edge is looked for among both its end points' triangles. A flip
+//! beside a knife edge can turn a triangle that leaned over the edge onto its other face.
+bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
 
 //! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
 //! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the

@@ -68,6 +68,7 @@ public:
     long flip_near_insertions() {
         long flipped = 0;
         for (int pass = 0; pass < 5; ++pass) {
+            fans_ = mesh_.fans();
             std::vector<char> changed;
             const long flips =
                 mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
@@ -189,6 +190,7 @@ private:
     }
 
     bool should_flip(const EditableMesh::Quad& q) const {
+        if (flip_folds_rim(mesh_, q, fans_)) return false;
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         if (before > params_.tolerance && after < 0.5 * before)
@@ -200,6 +202,7 @@ private:
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
     std::vector<char> near_;      // per triangle: made or changed this round
+    CompressedRows fans_;         // per point, its triangles at the start of the flip pass
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
 };
 

@@ -47,6 +47,11 @@ public:
         for (int t : fans_[v]) save(t);
         const Eigen::Vector3d was = mesh_.points[v];
         const Measure before = measure_saved(); // the fan's originals, v where it was
+        // The triangles round the fan, whose edges a move and its flips may fold.
+        std::vector<int> region;
+        for (int t : fans_[v])
+            for (int32_t w : mesh_.tris[t]) region.insert(region.end(), fans_[w].begin(), fans_[w].end());
+        const int folded_before = folded_edges(region);
         mesh_.points[v] = x;
         long made = 0;
         for (int pass = 0; pass < 4; ++pass) {
@@ -58,7 +63,8 @@ public:
             if (pass_flips == 0) break;
         }
         const Measure after = measure(touched());
-        const bool ok = after.off <= before.off &&
+        for (int t : touched()) region.push_back(t);
+        const bool ok = after.off <= before.off && folded_edges(region) <= folded_before &&
                         after.worst_kappa >= params_.kappa_floor &&
                         after.farthest <= std::max(params_.tolerance, before.farthest);
         if (ok) {
@@ -101,6 +107,26 @@ private:
         Measure m;
         for (int t : tris) add(m, mesh_.tris[t]);
         return m;
+    }
+
+    // The edges of `tris` (repeats allowed) whose two triangles turn by more than 170 degrees:
+    // folded, as the report counts them. A move onto a knife edge may fold a triangle of its fan
+    // onto one beyond it that no flip of the fan sees.
+    int folded_edges(const std::vector<int>& tris) const {
+        const double cos_folded = std::cos(170.0 * M_PI / 180.0);
+        std::vector<std::pair<int32_t, int32_t>> seen;
+        for (int t : tris)
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = mesh_.tris[t][j], b = mesh_.tris[t][(j + 1) % 3];
+                const Eigen::Vector3d n = mesh_.normal(mesh_.tris[t]);
+                for (int s : fans_[a]) {
+                    if (s == t || std::find(mesh_.tris[s].begin(), mesh_.tris[s].end(), b) == mesh_.tris[s].end()) continue;
+                    const Eigen::Vector3d m = mesh_.normal(mesh_.tris[s]);
+                    if (n.dot(m) < cos_folded * n.norm() * m.norm()) seen.emplace_back(std::min(a, b), std::max(a, b));
+                }
+            }
+        std::sort(seen.begin(), seen.end());
+        return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
     }
 
     // The triangles changed or moved so far in this snap.
