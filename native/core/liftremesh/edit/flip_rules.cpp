@@ -48,11 +48,27 @@ bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, c
     return near.triangle >= 0 && n.dot(input.triangle_normal(near.triangle)) < kCosCap * n.norm();
 }
 
+namespace {
+bool folded(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v) < kCosFolded * u.norm() * v.norm(); }
+} // namespace
+
+int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, const TrianglesOf& triangles_of) {
+    std::vector<std::pair<int32_t, int32_t>> seen;
+    for (int t : tris)
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = mesh.tris[t][j], b = mesh.tris[t][(j + 1) % 3];
+            const auto [first, last] = triangles_of(a);
+            for (const int32_t* s = first; s != last; ++s) {
+                const EditableMesh::Tri& x = mesh.tris[*s];
+                if (*s == t || std::find(x.begin(), x.end(), b) == x.end()) continue;
+                if (folded(mesh.normal(mesh.tris[t]), mesh.normal(x))) seen.emplace_back(std::min(a, b), std::max(a, b));
+            }
+        }
+    std::sort(seen.begin(), seen.end());
+    return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
+}
+
 bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
-    const double cos_folded = std::cos(170.0 * M_PI / 180.0);
-    auto folded = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-        return u.dot(v) < cos_folded * u.norm() * v.norm();
-    };
     // The triangle other than the quad's on edge u-v, or -1.
     auto across = [&](int32_t u, int32_t v) {
         for (int32_t w : {u, v})

@@ -11,6 +11,9 @@
 #include "liftremesh/spatial/aabb_tree.h"
 
 #include <cmath>
+#include <functional>
+#include <utility>
+#include <vector>
 
 namespace liftremesh {
 
@@ -70,6 +73,17 @@ TriangleNearInput triangle_near_input(const EditableMesh& mesh, const EditableMe
 //! smaller than itself leans against the facets it passes by less (a scan's antenna, the top rim
 //! of such a step).
 bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, const AabbTree& input);
+
+//! The cosine of the turn past which two triangles on an edge are folded onto each other: 170
+//! degrees, as the report counts folded edges (measure/quality.h).
+inline const double kCosFolded = std::cos(170.0 * M_PI / 180.0);
+
+//! A vertex's triangles: [first, second) of its indices.
+using TrianglesOf = std::function<std::pair<const int32_t*, const int32_t*>(int32_t)>;
+
+//! How many edges of the triangles `tris` (repeats allowed) are folded (kCosFolded), each
+//! counted once; `triangles_of` gives each vertex's triangles as the mesh has them now.
+int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, const TrianglesOf& triangles_of);
 
 //! Whether flipping the quad's edge folds one of the new triangles onto the triangle across
 //! the quad's rim (their normals turned by more than 170 degrees, as the report counts folded

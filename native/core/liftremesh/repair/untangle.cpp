@@ -81,10 +81,12 @@ long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     PassTriangles triangles(edit, mesh_tree);
     std::vector<char> around(edit.tris.size(), 0), changed;
     for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
+    const CompressedRows fans = edit.fans();
     const auto accept = [&](const EditableMesh::Quad& q) {
         const Tri &t1 = edit.tris[q.t1], &t2 = edit.tris[q.t2];
         const auto [n1, n2] = EditableMesh::flipped(q);
         if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
+        if (flip_folds_rim(edit, q, fans)) return false; // a crossing traded for a fold
         const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
         if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
         if (!(triangles.crossings_of({n1, n2}, {q.t1, q.t2}) < triangles.crossings_of({t1, t2}, {q.t1, q.t2})))
@@ -157,6 +159,12 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
         const long before = triangles.crossings_of(fan_tris, fan);
         if (before == 0) continue;
         const FanState was = fan_state(edit, fan_tris, input);
+        // The fan and the triangles round it, whose edges with the fan a move may fold.
+        std::vector<int> region;
+        for (int f : fan)
+            for (int32_t w : edit.tris[static_cast<size_t>(f)]) region.insert(region.end(), fans.begin(w), fans.end(w));
+        const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
+        const int folded_before = folded_edges_among(edit, region, triangles_of);
         const Eigen::Vector3d p = edit.points[static_cast<size_t>(v)];
         Eigen::Vector3d chosen = p;
         long fewest = before;
@@ -166,7 +174,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
             const long after = triangles.crossings_of(fan_tris, fan);
             if (after > fewest) continue;
             const FanState now = fan_state(edit, fan_tris, input);
-            if (now.degenerate || now.against > was.against ||
+            if (now.degenerate || now.against > was.against || folded_edges_among(edit, region, triangles_of) > folded_before ||
                 !(now.worst_kappa >= std::min(was.worst_kappa, params.kappa_floor)) ||
                 !(now.farthest <= std::max(was.farthest, params.tolerance)))
                 continue;

@@ -5,14 +5,16 @@
 // Netgen, Gmsh) refuses.
 // - Flips first, since they move no vertex: an edge of a crossing triangle is flipped when that
 //   lowers the number of crossings of its two triangles with the rest of the mesh, the new
-//   triangles are no farther from the input than the old ones (or within the tolerance) and no
-//   sliver is made.
+//   triangles are no farther from the input than the old ones (or within the tolerance), no
+//   sliver is made and neither is folded onto its neighbour across the quad's rim
+//   (flip_rules.h: flip_folds_rim): a crossing traded for a fold is no repair.
 // - Then moves, for what the flips leave (a vertex pushed through the other side, which no flip
 //   of its edges takes back): an inner vertex of a crossing triangle moves to whichever of
 //   the points 0, 1/4, ..., 1 of the way to its neighbours' centroid, put on the input (closest
 //   point), leaves its fan the fewest crossings (with the rest and among themselves), if fewer
 //   than before, and then the best worst kappa; under the same rules as a flip, and no more of
-//   its triangles facing against the input's triangle nearest to them than before (no fold).
+//   its triangles facing against the input's triangle nearest to them than before, nor more
+//   folded edges round its fan (no fold).
 // - Both, first with no triangle made below the project's floor (kappa 0.3), then, for the
 //   crossings left, down to the last resort's (0.2). With the lower floor alone, a flip that
 //   undoes one crossing with a sliver can leave the crossings beside it to moves that no longer

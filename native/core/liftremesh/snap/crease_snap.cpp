@@ -109,24 +109,12 @@ private:
         return m;
     }
 
-    // The edges of `tris` (repeats allowed) whose two triangles turn by more than 170 degrees:
-    // folded, as the report counts them. A move onto a knife edge may fold a triangle of its fan
-    // onto one beyond it that no flip of the fan sees.
+    // The edges of `tris` folded, each once (flip_rules.h). A move onto a knife edge may fold a
+    // triangle of its fan onto one beyond it that no flip of the fan sees.
     int folded_edges(const std::vector<int>& tris) const {
-        const double cos_folded = std::cos(170.0 * M_PI / 180.0);
-        std::vector<std::pair<int32_t, int32_t>> seen;
-        for (int t : tris)
-            for (int j = 0; j < 3; ++j) {
-                const int32_t a = mesh_.tris[t][j], b = mesh_.tris[t][(j + 1) % 3];
-                const Eigen::Vector3d n = mesh_.normal(mesh_.tris[t]);
-                for (int s : fans_[a]) {
-                    if (s == t || std::find(mesh_.tris[s].begin(), mesh_.tris[s].end(), b) == mesh_.tris[s].end()) continue;
-                    const Eigen::Vector3d m = mesh_.normal(mesh_.tris[s]);
-                    if (n.dot(m) < cos_folded * n.norm() * m.norm()) seen.emplace_back(std::min(a, b), std::max(a, b));
-                }
-            }
-        std::sort(seen.begin(), seen.end());
-        return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
+        return folded_edges_among(mesh_, tris, [this](int32_t v) {
+            return std::make_pair(fans_[v].data(), fans_[v].data() + fans_[v].size());
+        });
     }
 
     // The triangles changed or moved so far in this snap.
