@@ -1,6 +1,7 @@
 #include "liftremesh/edit/edge_collapse.h"
 
 #include "liftremesh/edit/acute_creases.h"
+#include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/spatial/aabb_tree.h"
@@ -15,9 +16,6 @@
 namespace liftremesh {
 
 namespace {
-
-// Two triangles turned onto each other: by more than 150 degrees.
-const double kCosFolded = -std::sqrt(3.0) / 2.0;
 
 struct Adjacency {
     std::vector<std::vector<int32_t>> triangles_of; // per vertex, live triangles using it
@@ -253,8 +251,8 @@ public:
             for (int j = 0; j < 3; ++j) x[j] = t[j] < 0 ? p : position(mesh_, t[j]);
             const Eigen::Vector3d n = triangle_normal(x[0], x[1], x[2]), was = normal_of(parent);
             if (!(n.dot(was) >= std::cos(M_PI / 4)) || !(triangle_kappa(x[0], x[1], x[2]) > must_beat)) return false;
-            // Nor folds onto the triangle across its edge of the quad's rim, unless its parent
-            // was folded so already (and it is no more).
+            // Nor folds (flip_rules.h: kCosFolded) onto the triangle across its edge of the
+            // quad's rim, unless its parent was folded so already (and it is no more).
             const int32_t u = t[0] < 0 ? t[1] : t[0], v = t[2];
             const int32_t across = other_triangle(u, v, parent);
             if (across < 0) continue;
