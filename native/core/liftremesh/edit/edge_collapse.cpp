@@ -30,6 +30,11 @@ double kappa_of(const Mesh& m, const std::array<int32_t, 3>& t) {
 
 std::array<int32_t, 3> corners(const Mesh& m, int32_t f) { return {m.triangles(f, 0), m.triangles(f, 1), m.triangles(f, 2)}; }
 
+// Unit normal of triangle f as the mesh has it now (zero if degenerate).
+Eigen::Vector3d normal_of(const Mesh& m, int32_t f) {
+    return triangle_normal(position(m, m.triangles(f, 0)), position(m, m.triangles(f, 1)), position(m, m.triangles(f, 2)));
+}
+
 // 2 pi minus the sum of the angles at v: zero on a flat or ruled (crease) surface, large at a corner.
 double angle_defect(const Mesh& m, const Adjacency& adj, int32_t v) {
     double sum = 0.0;
@@ -61,7 +66,7 @@ double try_collapse(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t g
     for (int32_t f : adj.triangles_of[gone]) {
         auto t = corners(m, f);
         if (std::find(t.begin(), t.end(), kept) != t.end()) continue; // removed by the collapse
-        const Eigen::Vector3d before = triangle_normal(position(m, t[0]), position(m, t[1]), position(m, t[2]));
+        const Eigen::Vector3d before = normal_of(m, f);
         for (auto& v : t)
             if (v == gone) v = kept;
         Eigen::Vector3d q[3];
@@ -102,11 +107,11 @@ public:
     bool may_go(int32_t v, double min_cos) const {
         if (on_boundary_[v]) return false;
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (int32_t f : adj_.triangles_of[v]) mean += normal_of(f);
+        for (int32_t f : adj_.triangles_of[v]) mean += normal_of(mesh_, f);
         if (!(mean.norm() > 0.0)) return false;
         mean.normalize();
         for (int32_t f : adj_.triangles_of[v])
-            if (!(normal_of(f).dot(mean) >= min_cos)) return false;
+            if (!(normal_of(mesh_, f).dot(mean) >= min_cos)) return false;
         return true;
     }
 
@@ -243,20 +248,20 @@ public:
         if (!q) return false;
         const auto [f1, f2, c, d] = *q;
         // Not an edge across a crease or a fold, whose halves would stay one.
-        if (c == d || !(normal_of(f1).dot(normal_of(f2)) >= std::cos(M_PI / 4))) return false;
+        if (c == d || !(normal_of(mesh_, f1).dot(normal_of(mesh_, f2)) >= std::cos(M_PI / 4))) return false;
         const std::array<std::pair<int32_t, std::array<int32_t, 3>>, 4> made = {
             {{f1, {a, -1, c}}, {f1, {-1, b, c}}, {f2, {b, -1, d}}, {f2, {-1, a, d}}}};
         for (const auto& [parent, t] : made) {
             Eigen::Vector3d x[3];
             for (int j = 0; j < 3; ++j) x[j] = t[j] < 0 ? p : position(mesh_, t[j]);
-            const Eigen::Vector3d n = triangle_normal(x[0], x[1], x[2]), was = normal_of(parent);
+            const Eigen::Vector3d n = triangle_normal(x[0], x[1], x[2]), was = normal_of(mesh_, parent);
             if (!(n.dot(was) >= std::cos(M_PI / 4)) || !(triangle_kappa(x[0], x[1], x[2]) > must_beat)) return false;
             // Nor folds (flip_rules.h: kCosFolded) onto the triangle across its edge of the
             // quad's rim, unless its parent was folded so already (and it is no more).
             const int32_t u = t[0] < 0 ? t[1] : t[0], v = t[2];
             const int32_t across = other_triangle(u, v, parent);
             if (across < 0) continue;
-            const double turn = normal_of(across).dot(n), turn_was = normal_of(across).dot(was);
+            const double turn = normal_of(mesh_, across).dot(n), turn_was = normal_of(mesh_, across).dot(was);
             if (!(turn >= std::min(turn_was, kCosFolded))) return false;
         }
         const auto m = static_cast<int32_t>(mesh_.points.rows());
@@ -310,11 +315,6 @@ private:
             if (std::find(t.begin(), t.end(), v) != t.end()) return g;
         }
         return -1;
-    }
-
-    Eigen::Vector3d normal_of(int32_t f) const {
-        const auto t = corners(mesh_, f);
-        return triangle_normal(position(mesh_, t[0]), position(mesh_, t[1]), position(mesh_, t[2]));
     }
 
     void drop(int32_t v, int32_t f) {
@@ -406,21 +406,17 @@ FoldedPairStats collapse_folded_pairs(Mesh& mesh, const Reference& reference, co
     check_indices(mesh, "folded pairs' mesh");
     if (mesh.triangles.rows() == 0) return {};
     const double cos_turn = std::cos(params.min_turn_deg * M_PI / 180.0);
-    auto normal_of = [&](int32_t f) {
-        return triangle_normal(position(mesh, mesh.triangles(f, 0)), position(mesh, mesh.triangles(f, 1)),
-                               position(mesh, mesh.triangles(f, 2)));
-    };
     // Whether triangle f faces against the input's triangle nearest to its centroid.
     auto faces_against_input = [&](int32_t f) {
         const Eigen::Vector3d centroid = (position(mesh, mesh.triangles(f, 0)) + position(mesh, mesh.triangles(f, 1)) +
                                           position(mesh, mesh.triangles(f, 2))) / 3.0;
         const ClosestPoint near = input_tree.closest(centroid);
-        return near.triangle >= 0 && normal_of(f).dot(input_tree.triangle_normal(near.triangle)) < 0.0;
+        return near.triangle >= 0 && normal_of(mesh, f).dot(input_tree.triangle_normal(near.triangle)) < 0.0;
     };
     // Whether the quad {f1, f2, c, d} of edge a-b (Collapser::quad) is a pair folded shut.
     auto folded_shut = [&](int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
         const auto [f1, f2, c, d] = q;
-        const Eigen::Vector3d n1 = normal_of(f1), n2 = normal_of(f2);
+        const Eigen::Vector3d n1 = normal_of(mesh, f1), n2 = normal_of(mesh, f2);
         if (c == d || !(n1.dot(n2) < cos_turn * n1.norm() * n2.norm())) return false; // also for a zero normal
         const double gap = (position(mesh, c) - position(mesh, d)).norm();
         if (!(gap < params.gap_ratio * (position(mesh, a) - position(mesh, b)).norm())) return false;

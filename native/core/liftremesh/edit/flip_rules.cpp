@@ -54,16 +54,18 @@ bool folded(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v
 
 int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, const TrianglesOf& triangles_of) {
     std::vector<std::pair<int32_t, int32_t>> seen;
-    for (int t : tris)
+    for (int t : tris) {
+        const Eigen::Vector3d n = mesh.normal(mesh.tris[t]);
         for (int j = 0; j < 3; ++j) {
             const int32_t a = mesh.tris[t][j], b = mesh.tris[t][(j + 1) % 3];
             const auto [first, last] = triangles_of(a);
             for (const int32_t* s = first; s != last; ++s) {
                 const EditableMesh::Tri& x = mesh.tris[*s];
                 if (*s == t || std::find(x.begin(), x.end(), b) == x.end()) continue;
-                if (folded(mesh.normal(mesh.tris[t]), mesh.normal(x))) seen.emplace_back(std::min(a, b), std::max(a, b));
+                if (folded(n, mesh.normal(x))) seen.emplace_back(std::min(a, b), std::max(a, b));
             }
         }
+    }
     std::sort(seen.begin(), seen.end());
     return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
 }

@@ -142,6 +142,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
 
+    const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
     long moves = 0;
     std::vector<int> fan;
     std::vector<Tri> fan_tris;
@@ -163,7 +164,6 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
         std::vector<int> region;
         for (int f : fan)
             for (int32_t w : edit.tris[static_cast<size_t>(f)]) region.insert(region.end(), fans.begin(w), fans.end(w));
-        const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
         const int folded_before = folded_edges_among(edit, region, triangles_of);
         const Eigen::Vector3d p = edit.points[static_cast<size_t>(v)];
         Eigen::Vector3d chosen = p;
