@@ -62,8 +62,10 @@ QUALITY = {
                     "facing against its neighbours). Folded, they overlap, which a tetrahedral mesher "
                     "refuses, though `self_intersections` does not count them",
     "folded_edge_length": "total length of the `folded_edges`",
-    "self_intersections": "pairs of triangles passing through each other (a side of one through the "
-                          "inside of the other; neighbours and coplanar overlaps not counted): what a "
+    "self_intersections": "pairs of triangles passing through each other or touching (a side of one "
+                          "through the inside of the other, or a corner of one on the other that is not "
+                          "one of its corners, as FreeCAD's check counts them; neighbours sharing an "
+                          "edge and coplanar overlaps without such a corner not counted): what a "
                           "tetrahedral mesher refuses. At most 200 box-overlapping pairs are tested per "
                           "triangle, so on a soup of long overlapping triangles it is a lower bound",
 }
@@ -137,7 +139,7 @@ WARNINGS = [
     "the target edge length merged or broke (the paper's Section 2.2)",
     "closed parts kept their input triangles (`parts_kept`)",
     "the output has more boundary loops than the input: holes",
-    "the output has triangles passing through each other (whatever the input has)",
+    "the output has triangles passing through each other or touching (whatever the input has)",
     "`hausdorff_relative` is over 1%",
 ]
 

@@ -43,7 +43,7 @@ QUALITY_PROPERTIES = {
     "HausdorffRelative": ("App::PropertyFloat", _relative,
                           "two-sided Hausdorff distance to the source / its bounding-box diagonal", 2),
     "SelfIntersections": ("App::PropertyInteger", lambda r: _lookup(r, ("output", "self_intersections")),
-                          "pairs of triangles passing through each other: 0 for a surface to fill with "
+                          "pairs of triangles passing through each other or touching: 0 for a surface to fill with "
                           "tetrahedra (-1: not counted, a result saved before the count)", 1),
     "Report": ("App::PropertyString", None, "the full quality report (JSON, as the command-line tool writes it)", 2),
 }

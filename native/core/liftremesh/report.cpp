@@ -169,7 +169,7 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         std::to_string(in.boundary_loops) + ": holes the source does not have");
     if (out.self_intersections > 0)
         found.push_back("the result has " + std::to_string(out.self_intersections) +
-                        " pairs of triangles passing through each other (the source " +
+                        " pairs of triangles passing through each other or touching (the source " +
                         std::to_string(in.self_intersections) + "): a tetrahedral mesher will refuse it");
     // A knife edge of the source, followed, is folded too: only a longer total is news (a tenth
     // more, for its resampling).

@@ -16,7 +16,8 @@ namespace {
 Eigen::Vector3d corner_of(const Mesh& m, Eigen::Index f, int j) { return m.points.row(m.triangles(f, j)).transpose(); }
 
 //! The count by testing every pair of triangles (no tree), with the rules of the header: pairs
-//! sharing an edge skipped, sides ending at a vertex of the other triangle not tested.
+//! sharing an edge skipped, sides ending at a vertex of the other triangle not tested. (Touches
+//! are left out: the random meshes below have none.)
 long brute_force_count(const Mesh& m) {
     long pairs = 0;
     for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
@@ -76,6 +77,28 @@ TEST(SelfIntersection, PairsAreCountedOnceByTheirCrossingSides) {
     EXPECT_EQ(count(mesh({a, b, c, {0.5, 0.5, 0}}, {{0, 1, 2}, {0, 1, 3}})), 0);
     // Coplanar neighbours touching at a vertex, as on a CAD face: none.
     EXPECT_EQ(count(mesh({a, b, c, {-2, 0, 0}, {-1, -2, 0}}, {{0, 1, 2}, {0, 3, 4}})), 0);
+}
+
+TEST(SelfIntersection, ACornerOnAnotherTriangleIsATouch) {
+    auto mesh = [](std::vector<Eigen::Vector3d> pts, std::vector<std::array<int32_t, 3>> tris) {
+        return test::make_mesh(pts, tris);
+    };
+    // Two sheets meeting along a crease, a corner of one on a side of the other, in its plane
+    // (the connector's housings, FreeCAD's check) or leaning away from it: one pair each way.
+    for (const Eigen::Vector3d& far : {Eigen::Vector3d(1, -1, 0), Eigen::Vector3d(1, -1, 1)}) {
+        EXPECT_EQ(count(mesh({a, b, c, {1, 0, 0}, {0.5, -1, 0}, far}, {{0, 1, 2}, {3, 4, 5}})), 1) << far.transpose();
+        EXPECT_EQ(count(mesh({a, b, c, {1, 0, 0}, {0.5, -1, 0}, far}, {{3, 4, 5}, {0, 1, 2}})), 1) << far.transpose();
+    }
+    // On the inside, and on a corner of the other at another index.
+    EXPECT_EQ(count(mesh({a, b, c, {0.5, 0.5, 0}, {0.5, -1, -1}, {1, -1, 1}}, {{0, 1, 2}, {3, 4, 5}})), 1);
+    EXPECT_EQ(count(mesh({a, b, c, {2, 0, 0}, {3, -1, 0}, {3, 1, 1}}, {{0, 1, 2}, {3, 4, 5}})), 1);
+    // A thousandth of the side off the other triangle, beside it or above it: apart.
+    EXPECT_EQ(count(mesh({a, b, c, {1, -2e-3, 0}, {0.5, -1, 0}, {1, -1, 1}}, {{0, 1, 2}, {3, 4, 5}})), 0);
+    EXPECT_EQ(count(mesh({a, b, c, {0.5, 0.5, 2e-3}, {0.5, -1, 1}, {1, -1, 1}}, {{0, 1, 2}, {3, 4, 5}})), 0);
+    // Sharing a vertex, the other corner on a side of the other (a T-junction, or a fold within
+    // a fan): a touch; the shared corner itself is none.
+    EXPECT_EQ(count(mesh({a, b, c, {1, 0, 0}, {1, -1, 0}}, {{0, 1, 2}, {0, 4, 3}})), 1);
+    EXPECT_EQ(count(mesh({a, b, c, {-1, -1, 0}, {1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}})), 0);
 }
 
 TEST(SelfIntersection, ClosedSurfacesHaveNone) {

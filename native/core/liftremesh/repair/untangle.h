@@ -2,7 +2,8 @@
 // moves: the repair's last step. Where the input has features smaller than the edge length (two
 // parts of a solid closer together than an edge) the restricted Delaunay triangulation can fold
 // there, and a fold that passes through its neighbours is what a tetrahedral mesher (TetGen,
-// Netgen, Gmsh) refuses.
+// Netgen, Gmsh) refuses. So is a touch (self_intersection.h), where two sheets meeting along a
+// line each put a vertex on it and one lies on the other's edge: counted as a crossing here.
 // - Flips first, since they move no vertex: an edge of a crossing triangle is flipped when that
 //   lowers the number of crossings of its two triangles with the rest of the mesh, the new
 //   triangles are no farther from the input than the old ones (or within the tolerance), no

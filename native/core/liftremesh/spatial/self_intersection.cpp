@@ -31,12 +31,49 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
     return true;
 }
 
+namespace {
+
+// Whether a corner of `from` that is not one of `onto`'s lies on triangle `onto`: within kTouch
+// of its longest side from it, its plane and its sides alike. Two triangles of a surface that
+// share at most a vertex meet nowhere else; where one's corner lies on the other, as where two
+// sheets meet along a crease each holds a vertex on, FreeCAD's check counts the touch and a
+// mesher sees the sheets fused. (Of two sharing a vertex, a corner on the other is a fold
+// within the fan: counted too, so that no flip takes a touch off the count by giving the two
+// triangles a common vertex.)
+bool vertex_touches(const std::array<int32_t, 3>& from_ids, const std::array<Eigen::Vector3d, 3>& from,
+                    const std::array<int32_t, 3>& onto_ids, const std::array<Eigen::Vector3d, 3>& onto) {
+    constexpr double kTouch = 1e-6;
+    const Eigen::Vector3d n = (onto[1] - onto[0]).cross(onto[2] - onto[0]);
+    const double n2 = n.squaredNorm();
+    if (!(n2 > 0.0)) return false;
+    const double longest = std::sqrt(std::max({(onto[1] - onto[0]).squaredNorm(), (onto[2] - onto[1]).squaredNorm(),
+                                               (onto[0] - onto[2]).squaredNorm()}));
+    const double tol = kTouch * longest, area2 = std::sqrt(n2);
+    for (int k = 0; k < 3; ++k) {
+        if (from_ids[k] == onto_ids[0] || from_ids[k] == onto_ids[1] || from_ids[k] == onto_ids[2]) continue;
+        const Eigen::Vector3d& x = from[k];
+        if (!(std::abs(n.dot(x - onto[0])) <= tol * area2)) continue;
+        bool inside = true;
+        for (int i = 0; i < 3 && inside; ++i) {
+            const Eigen::Vector3d& a = onto[i];
+            const Eigen::Vector3d& b = onto[(i + 1) % 3];
+            // Signed distance of x from side ab, inward positive: n.((b - a) x (x - a)) / (|n| |b - a|).
+            inside = n.dot((b - a).cross(x - a)) >= -tol * area2 * (b - a).norm();
+        }
+        if (inside) return true;
+    }
+    return false;
+}
+
+} // namespace
+
 bool triangles_cross(const std::array<int32_t, 3>& tf, const std::array<Eigen::Vector3d, 3>& pf,
                      const std::array<int32_t, 3>& tg, const std::array<Eigen::Vector3d, 3>& pg) {
     int shared = 0;
     for (int32_t u : tf)
         for (int32_t w : tg) shared += u == w;
     if (shared >= 2) return false;
+    if (vertex_touches(tf, pf, tg, pg) || vertex_touches(tg, pg, tf, pf)) return true;
     // Quick rejection: the vertices of one not on the other strictly on one side of its plane (no
     // tolerance: a vertex near or on the plane goes on to the exact tests below).
     auto one_side = [](const std::array<int32_t, 3>& of, const std::array<Eigen::Vector3d, 3>& of_p,
