@@ -107,6 +107,24 @@ TEST(PatchRefinement, AHoleOfTheMeshsOwnSizeKeepsItsTwoTriangles) {
     EXPECT_TRUE(topology(m).oriented_manifold());
 }
 
+// A patch of two triangles on an edge of twice the spacing: split at its midpoint where they
+// lie flat; not where they turn by 150 degrees, as a fill across a 30-degree knife edge does
+// (the thread of tests/freecad/cad_parts.py at seed 7 with held creases: five such vertices
+// inside the wedge, kappa min 0.13), since that midpoint lies off both faces.
+TEST(PatchRefinement, AnEdgeWhereThePatchFoldsIsNotSplit) {
+    const double turn = 150.0 * M_PI / 180.0;
+    for (const double angle : {0.0, turn}) {
+        const Eigen::Vector3d d(1.0, -1.5 * std::cos(angle), -1.5 * std::sin(angle));
+        Mesh m = make_mesh({{0, 0, 0}, {2, 0, 0}, {1, 1.5, 0}, d}, {{0, 1, 2}, {1, 0, 3}});
+        const long inserted = refine_patches(m, {0, 1.0, 1000}).inserted;
+        if (angle == 0.0)
+            EXPECT_GT(inserted, 0);
+        else
+            EXPECT_EQ(inserted, 0);
+        EXPECT_TRUE(topology(m).oriented_manifold());
+    }
+}
+
 TEST(PatchRefinement, NothingToRefineAndBadArguments) {
     Mesh m = make_icosphere(1);
     const Mesh before = m;

@@ -28,12 +28,17 @@ public:
     // is split once a round. Returns whether any edge was split. The 4/5 h is isotropic
     // remeshing's collapse bound (Botsch and Kobbelt): a hole of the mesh's own size, such as a
     // quad whose diagonal is a little over 4/3 h, keeps its two triangles rather than gaining a
-    // vertex a remesher would collapse again.
+    // vertex a remesher would collapse again. Nor is an edge split whose two triangles turn by
+    // more than 30 degrees: a patch folded there (a hole across a knife edge, whose loop runs
+    // down both faces) has its midpoint off both, inside the wedge, where no later step puts it
+    // back on the input.
     bool split_long_edges(double h, long max_added) {
         std::vector<std::pair<double, uint64_t>> candidates;
         const auto uses = mesh_.edge_uses();
         for (const auto& [key, use] : uses) {
             if (use.size() != 2) continue;
+            if (!EditableMesh::turns_little(mesh_.normal(mesh_.tris[use[0].tri]), mesh_.normal(mesh_.tris[use[1].tri])))
+                continue;
             const Tri& t = mesh_.tris[use[0].tri];
             const int32_t a = t[use[0].j], b = t[(use[0].j + 1) % 3];
             const double length = (mesh_.points[b] - mesh_.points[a]).norm();

@@ -24,7 +24,8 @@ struct PatchRefinementParams {
 
 //! Refines the triangles of `mesh` from index `params.first` on (the patches fill_holes
 //! appended), towards edge length h = `params.spacing`, in up to `params.rounds` rounds of:
-//! - splitting at its midpoint every edge longer than 4/3 h that two patch triangles share;
+//! - splitting at its midpoint every edge longer than 4/3 h that two patch triangles share,
+//!   where they turn by at most 30 degrees (a midpoint across a fold lies off the surface);
 //! - flipping every edge two patch triangles share where the flip raises the smaller kappa
 //!   (Eq. 26) of the two, turns neither by more than 30 degrees and makes no edge the mesh has;
 //! - moving each added vertex to the average of its neighbours (a move that would turn one of
