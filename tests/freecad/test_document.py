@@ -34,6 +34,17 @@ def block_with_hole(doc, name="Block"):
     return obj
 
 
+def reopened(doc, objects):
+    """(`doc` saved and opened again, its `objects` there, found by name)."""
+    names = [obj.Name for obj in objects]
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "saved.FCStd")
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+    return doc, [doc.getObject(name) for name in names]
+
+
 class DocumentTest(unittest.TestCase):
     def setUp(self):
         self.doc = FreeCAD.newDocument("LiftRemeshDocumentTest")
@@ -186,13 +197,7 @@ class DocumentTest(unittest.TestCase):
         report = json.loads(other.Report)
         del report["output"]["self_intersections"]
         other.Report = json.dumps(report)
-        names = obj.Name, other.Name
-        with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "older.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-        obj, other = (self.doc.getObject(name) for name in names)
+        self.doc, (obj, other) = reopened(self.doc, (obj, other))
         for restored in (obj, other):
             self.assertNotIn("Touched", restored.State)  # opening a document does not ask for a recompute
         self.assertEqual(obj.SelfIntersections, 0)  # read from the stored report
@@ -209,13 +214,7 @@ class DocumentTest(unittest.TestCase):
         old, new = (LiftRemesh.remesh_objects(self.doc, [self.block], vertices=300)[0] for _ in range(2))
         self.assertTrue(new.HoldCreases)  # the default
         old.removeProperty("HoldCreases")  # as an earlier version saved it
-        names = old.Name, new.Name
-        with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "older.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-        old, new = (self.doc.getObject(name) for name in names)
+        self.doc, (old, new) = reopened(self.doc, (old, new))
         self.assertFalse(old.HoldCreases)
         self.assertTrue(new.HoldCreases)
         self.assertNotIn("Touched", old.State)
@@ -248,13 +247,8 @@ class PropertyRangeTest(unittest.TestCase):
         FreeCAD.closeDocument(self.doc.Name)
 
     def reload(self):
-        names = [obj.Name for obj in self.doc.Objects]
-        with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "saved.FCStd")
-            self.doc.saveAs(path)
-            FreeCAD.closeDocument(self.doc.Name)
-            self.doc = FreeCAD.openDocument(path)
-        return [self.doc.getObject(name) for name in names]
+        self.doc, objects = reopened(self.doc, self.doc.Objects)
+        return objects
 
     def assert_constraints_are_the_table_ranges(self, obj):
         for row in constrained_rows():

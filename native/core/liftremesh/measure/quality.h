@@ -51,8 +51,9 @@ struct MeshQuality {
     //! tetrahedral mesher refuses, though neighbours agree and no side passes through the other.
     long folded_edges = 0;
     double folded_edge_length = 0.0;
-    //! Pairs of triangles passing through each other or touching (count_self_intersections, which needs an
-    //! AABB tree: measure_quality leaves 0 here, the pipeline counts them for input and output).
+    //! Pairs of triangles passing through each other or touching (count_self_intersections,
+    //! which needs an AABB tree: measure_quality leaves 0 here, the pipeline counts them for
+    //! input and output).
     long self_intersections = 0;
 };
 

@@ -33,8 +33,8 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
 
 namespace {
 
-// Whether a corner of `from` that is not one of `onto`'s lies on triangle `onto`: within kTouch
-// of its longest side from it, its plane and its sides alike. Two triangles of a surface that
+// Whether a corner of `from` that is not one of `onto`'s lies on triangle `onto`: no farther
+// than kTouch times its longest side from its plane and inside each of its sides. Two triangles of a surface that
 // share at most a vertex meet nowhere else; where one's corner lies on the other, as where two
 // sheets meet along a crease each holds a vertex on, FreeCAD's check counts the touch and a
 // mesher sees the sheets fused. (Of two sharing a vertex, a corner on the other is a fold
