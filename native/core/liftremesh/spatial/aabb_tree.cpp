@@ -110,12 +110,16 @@ int32_t nodes_below(int32_t n, std::map<int32_t, int32_t>& known) {
 }
 
 //! Builds a tree into nodes sized for it beforehand, so that the two halves of a node can be
-//! built at once: each subtree's nodes are a range of its own, in depth-first order.
+//! built at once: each subtree's nodes are a range of its own, in depth-first order. The nodes'
+//! boxes are left to bound_boxes, once the triangles are in tree order.
 struct Builder {
+    //! A triangle's centroid beside its index: the median searches read them in sequence.
+    struct Item {
+        Eigen::Vector3d centroid;
+        int32_t triangle;
+    };
     std::vector<Node>& nodes;
-    std::vector<int32_t>& order; //!< triangles in tree order once built
-    const std::vector<Eigen::Vector3d>& centroids;
-    const std::vector<Box>& boxes; //!< per triangle, in input order
+    std::vector<Item>& order; //!< triangles in tree order once built
     const std::map<int32_t, int32_t>& below; //!< nodes_below, for every subtree size of the tree
 
     //! Builds the subtree of nodes[index] over order[begin, end), its nodes below it taken from
@@ -123,8 +127,6 @@ struct Builder {
     void build(int32_t index, int32_t next, int32_t begin, int32_t end) {
         Node& node = nodes[index];
         if (end - begin <= kLeafSize) {
-            node.box = Box::empty();
-            for (int32_t i = begin; i < end; ++i) node.box.add(boxes[order[i]]);
             node.first = begin;
             node.count = end - begin;
             return;
@@ -132,14 +134,14 @@ struct Builder {
         Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
         Eigen::Vector3d chi = -clo;
         for (int32_t i = begin; i < end; ++i) {
-            clo = clo.cwiseMin(centroids[order[i]]);
-            chi = chi.cwiseMax(centroids[order[i]]);
+            clo = clo.cwiseMin(order[i].centroid);
+            chi = chi.cwiseMax(order[i].centroid);
         }
         int axis = 0;
         (chi - clo).maxCoeff(&axis);
         const int32_t mid = begin + (end - begin) / 2;
-        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](int32_t s, int32_t t) {
-            return sort_key(centroids[s][axis]) < sort_key(centroids[t][axis]);
+        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](const Item& s, const Item& t) {
+            return sort_key(s.centroid[axis]) < sort_key(t.centroid[axis]);
         });
         node.first = next;
         node.count = 0;
@@ -150,11 +152,25 @@ struct Builder {
 #pragma omp task default(shared) if (end - mid >= kParallelSize)
         build(next + 1, right_next, mid, end);
 #pragma omp taskwait
-        // The union of the halves' boxes: min and max are exact, so the same box as the corners'.
-        node.box = nodes[next].box;
-        node.box.add(nodes[next + 1].box);
     }
 };
+
+//! Sets every node's box from the triangles' (`boxes`, in tree order): a leaf's holds its
+//! triangles', an inner node's its children's. Children come after their parent (Builder), so
+//! one backward pass bounds every node; min and max are exact, so an inner node's box is that
+//! of its triangles.
+void bound_boxes(std::vector<Node>& nodes, const std::vector<Box>& boxes) {
+    for (size_t i = nodes.size(); i-- > 0;) {
+        Node& node = nodes[i];
+        node.box = Box::empty();
+        if (node.count > 0) {
+            for (int32_t t = node.first; t < node.first + node.count; ++t) node.box.add(boxes[t]);
+        } else {
+            node.box = nodes[node.first].box;
+            node.box.add(nodes[node.first + 1].box);
+        }
+    }
+}
 
 } // namespace
 
@@ -194,37 +210,40 @@ AabbTree::AabbTree(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     check_indices(mesh, "AABB tree");
     const auto nf = static_cast<int32_t>(mesh.triangles.rows());
     if (nf == 0) return;
-    std::vector<std::array<Eigen::Vector3d, 3>> triangles(static_cast<size_t>(nf));
-    std::vector<Eigen::Vector3d> centroids(static_cast<size_t>(nf));
-    std::vector<Box> boxes(static_cast<size_t>(nf), Box::empty());
+    // Read from the mesh twice (centroids to order the triangles, then corners in that order)
+    // rather than copied: on a million triangles a copy is 70 MB of fresh pages, which the
+    // kernel zeroes one by one.
+    auto corner = [&mesh](int32_t f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
+    std::vector<Builder::Item> order(static_cast<size_t>(nf));
     impl_->normals.resize(static_cast<size_t>(nf));
 #pragma omp parallel for schedule(static) if (nf >= kParallelSize)
     for (int32_t f = 0; f < nf; ++f) {
-        for (int j = 0; j < 3; ++j) {
-            triangles[f][j] = mesh.points.row(mesh.triangles(f, j)).transpose();
-            boxes[f].add(triangles[f][j]);
-        }
-        centroids[f] = (triangles[f][0] + triangles[f][1] + triangles[f][2]) / 3.0;
-        impl_->normals[f] = liftremesh::triangle_normal(triangles[f][0], triangles[f][1], triangles[f][2]);
+        const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+        order[f] = {(a + b + c) / 3.0, f};
+        impl_->normals[f] = liftremesh::triangle_normal(a, b, c);
     }
 
-    std::vector<int32_t> order(static_cast<size_t>(nf));
-    std::iota(order.begin(), order.end(), 0);
     std::map<int32_t, int32_t> below;
     impl_->nodes.resize(1 + static_cast<size_t>(nodes_below(nf, below)));
-    Builder builder{impl_->nodes, order, centroids, boxes, below};
+    Builder builder{impl_->nodes, order, below};
 #pragma omp parallel if (nf >= kParallelSize)
 #pragma omp single
     builder.build(0, 1, 0, nf);
 
-    impl_->ids = order;
     impl_->corners.resize(3 * static_cast<size_t>(nf));
     impl_->boxes.resize(static_cast<size_t>(nf));
 #pragma omp parallel for schedule(static) if (nf >= kParallelSize)
     for (int32_t t = 0; t < nf; ++t) {
-        for (int j = 0; j < 3; ++j) impl_->corners[3 * static_cast<size_t>(t) + j] = triangles[order[t]][j];
-        impl_->boxes[t] = boxes[order[t]];
+        Box& box = impl_->boxes[t];
+        box = Box::empty();
+        for (int j = 0; j < 3; ++j) {
+            impl_->corners[3 * static_cast<size_t>(t) + j] = corner(order[t].triangle, j);
+            box.add(impl_->corners[3 * static_cast<size_t>(t) + j]);
+        }
     }
+    bound_boxes(impl_->nodes, impl_->boxes);
+    impl_->ids.resize(static_cast<size_t>(nf));
+    for (int32_t t = 0; t < nf; ++t) impl_->ids[t] = order[t].triangle;
 }
 
 AabbTree::~AabbTree() = default;
