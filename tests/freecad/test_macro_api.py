@@ -145,15 +145,18 @@ class MacroApiTest(unittest.TestCase):
 
     @unittest.skipUnless(os.path.exists(os.path.join(IDF_LIBS, "TSM_103_01_L_DV_A.stp")),
                          "FreeCAD's Idflibs connector TSM_103_01_L_DV_A.stp not found")
-    @unittest.skipIf(int(FreeCAD.Version()[0]) >= 1,
-                     "known gap (docs/known-gaps.md): FreeCAD 1.x tessellates the connector otherwise, and "
-                     "with held creases the result has Euler characteristic -16 and 5 pairs crossing")
     def test_the_peers_connector_with_held_creases_has_no_touch(self):
         """The same with the creases held: there two knife edges of the housings meet along a
         line, each side's row held on it, and a vertex of one side lay on an edge of the other,
         a touch FreeCAD counted (3 pairs) and the report did not; it counts touches now, which
-        the untangling undoes."""
-        self.check_connector(hold_creases=True)
+        the untangling undoes. FreeCAD 1.x tessellates the part otherwise (2940 facets for 2788)
+        and there the sites held where a bore meets a chamfer a fraction of the edge length away
+        broke the housing's surface (Euler characteristic -16, 3 edges folded shut, 5 pairs
+        crossing): that part is remeshed again with its creases snapped to (a warning says so);
+        the others keep their held sites."""
+        result = self.check_connector(hold_creases=True)
+        self.assertGreater(result.report["crease_sites"], 0)
+        self.assertLess(result.report["parts_unheld"], result.report["parts"])
 
     def check_connector(self, **settings):
         shape = Part.read(os.path.join(IDF_LIBS, "TSM_103_01_L_DV_A.stp"))
@@ -164,7 +167,10 @@ class MacroApiTest(unittest.TestCase):
         self.assertEqual(mesh_checks.euler_characteristic(points, triangles), -14)
         self.assertEqual(result.report["output"]["self_intersections"], 0)
         self.assertFalse(result.mesh.hasSelfIntersections())
-        self.assertEqual(result.warnings, [])
+        # The one warning allowed: a part whose held creases were given up for snapped ones.
+        unheld = [w for w in result.warnings if "snapped to, not held" in w]
+        self.assertEqual(len(unheld), 1 if result.report["parts_unheld"] else 0)
+        self.assertEqual([w for w in result.warnings if w not in unheld], [])
         self.assertEqual(result.report["parts"], 3)
         self.assertEqual(result.report["parts_kept"], 0)
         return result

@@ -31,6 +31,7 @@
 #include "liftremesh/system/threads.h"
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -416,6 +417,7 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
     to.energy_initial += run.energy_initial;
     to.energy_final += run.energy_final;
     to.crease_sites += run.crease_sites;
+    to.parts_unheld += run.parts_unheld;
     to.sites_split += run.sites_split;
     to.holes_filled += run.holes_filled;
     to.triangles_removed += run.triangles_removed;
@@ -439,6 +441,20 @@ bool keeps_piece(const MeshQuality& in, const Mesh& out) {
            q.euler_characteristic == expected_euler_characteristic(run) && q.kappa_min >= std::min(in.kappa_min, kKappaFloor);
 }
 
+// What a piece's output has wrong that its input (`in`, measured) has not: a topology other than
+// the report expects of it, and each edge folded shut, non-manifold edge or hole more than the
+// input's. Zero for a sound surface; no triangle at all counts as the worst.
+long surface_defects(const MeshQuality& in, const Mesh& out) {
+    if (out.triangles.rows() == 0) return std::numeric_limits<long>::max();
+    RemeshReport run;
+    run.input = in;
+    run.output = measure_quality(out);
+    const MeshQuality& q = run.output;
+    return (q.euler_characteristic == expected_euler_characteristic(run) ? 0 : 1) +
+           std::max(0L, q.folded_edges - in.folded_edges) + std::max(0L, q.nonmanifold_edges - in.nonmanifold_edges) +
+           std::max(0L, q.boundary_loops - in.boundary_loops);
+}
+
 // Largest share of the input's area a closed piece may have to come out as its input's triangles
 // when remeshing it fails (remesh_one_of_many).
 constexpr double kSmallPiece = 0.05;
@@ -451,12 +467,18 @@ constexpr double kSmallPiece = 0.05;
 // (report.parts_kept), as Gmsh keeps a surface smaller than the mesh size with its curves' own
 // points. A larger piece, or the open ones, comes out as remesh_piece makes it: the report's
 // warnings tell.
+// With hold_creases, a piece whose output has a defect its input has not (surface_defects) is
+// remeshed again with its creases snapped to rather than held, and the run with fewer defects
+// kept (report.parts_unheld): held sites on creases closer together than the spacing (a bore
+// meeting a chamfer a fraction of it away) hold cells too narrow for the triangulation to join
+// as the surface does, where free sites move apart.
 Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
                         double spacing, double input_area, long sites_wanted, long& retry_sites, StageClock& clock,
                         const ProgressCallback& progress, RemeshReport& report) {
     if (piece.sites == 0) return {}; // no triangle of positive area: nothing to remesh
     const bool small = piece.closed && surface_area(*piece.input) <= kSmallPiece * input_area;
-    const MeshQuality in = small ? measure_quality(*piece.input) : MeshQuality{};
+    const bool holding = params.hold_creases && params.feature_angle < 180.0;
+    const MeshQuality in = small || holding ? measure_quality(*piece.input) : MeshQuality{};
     for (;;) {
         RemeshReport run;
         Mesh part;
@@ -464,6 +486,25 @@ Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& pa
             part = remesh_piece(piece, seed, params, to_unit, spacing, clock, progress, run);
         } catch (const TopologyFailure&) { // too few sites for a triangle
             if (!small) throw;
+        }
+        if (holding && run.crease_sites > 0) {
+            const long defects = surface_defects(in, part);
+            if (defects > 0) {
+                RemeshParams snapped = params;
+                snapped.hold_creases = false;
+                RemeshReport again;
+                Mesh other;
+                try {
+                    other = remesh_piece(piece, seed, snapped, to_unit, spacing, clock, progress, again);
+                } catch (const TopologyFailure&) {
+                    if (!small) throw;
+                }
+                if (surface_defects(in, other) < defects) {
+                    part = std::move(other);
+                    run = std::move(again);
+                    run.parts_unheld = 1;
+                }
+            }
         }
         if (!small || keeps_piece(in, part)) {
             add_counts(report, run);

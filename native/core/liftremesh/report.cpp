@@ -164,6 +164,11 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         (report.parts_kept == 1 ? " is thinner or smaller than the target edge length and keeps"
                                                 : " are thinner or smaller than the target edge length and keep") +
                         " the source's triangles; ask for more vertices or a smaller edge length");
+    if (report.parts_unheld > 0)
+        found.push_back("the creases of " + std::to_string(report.parts_unheld) + " of the source's " +
+                        std::to_string(report.parts) + (report.parts == 1 ? " part" : " parts") +
+                        " were snapped to, not held: sites held on them broke the surface (creases closer "
+                        "together than the target edge length); ask for a smaller edge length to hold them");
     if (out.boundary_loops > in.boundary_loops)
         found.push_back("the result has " + std::to_string(out.boundary_loops) + " boundary loops, the source " +
                         std::to_string(in.boundary_loops) + ": holes the source does not have");
@@ -208,6 +213,7 @@ std::string to_json(const RemeshReport& report) {
                         {"energy_initial", json_number(report.energy_initial)},
                         {"energy_final", json_number(report.energy_final)},
                         {"crease_sites", json_number(report.crease_sites)},
+                        {"parts_unheld", json_number(report.parts_unheld)},
                         {"sites_split", json_number(report.sites_split)},
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},

@@ -41,6 +41,8 @@ struct RemeshReport {
     double energy_initial = 0.0;         //!< objective at the random start (first phase's sigma)
     double energy_final = 0.0;           //!< objective at the last iterate (its phase's sigma)
     long crease_sites = 0;               //!< sites held on the creases and their corners (crease_sites.h)
+    long parts_unheld = 0;               //!< parts whose creases were snapped to, not held: holding them
+                                         //!< broke the part's surface (pipeline.h)
     long sites_split = 0;                //!< sites whose restricted cell came in pieces, a vertex each (rdt.h)
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair (repair.h), darts jutting into the holes

@@ -85,6 +85,7 @@ TEST(Remesh, CubeCornersAreVerticesWithHeldCreasesAlone) {
     EXPECT_GE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::floor(1.0 / h - 1.0)));
     EXPECT_LE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::ceil(1.5 / h)));
     EXPECT_GE(r.report.output.kappa_min, 0.45);
+    EXPECT_EQ(r.report.parts_unheld, 0); // a sound result keeps its held sites
     EXPECT_EQ(remesh(input, params_with(1200, 1.0)).report.crease_sites, 0); // off by default
 }
 
