@@ -47,6 +47,10 @@ QUALITY_PROPERTIES = {
                           "tetrahedra (-1: not counted, a result saved before the count)", 1),
     "Report": ("App::PropertyString", None, "the full quality report (JSON, as the command-line tool writes it)", 2),
 }
+# Parameters whose default changed, with what a document saved before their property existed
+# was remeshed with: restored so, it recomputes as it did (the creases held by default since
+# issue 35's sites held on them became the default).
+EARLIER_DEFAULTS = {"hold_creases": False}
 SIZE_BY = "SizeBy"  # which of the two target sizes is used (an enumeration of their labels)
 _adding = set()  # _key() of the features whose SizeBy is being added: its first values convert nothing
 
@@ -184,8 +188,11 @@ class RemeshFeature(StatelessProxy):
         # The constraints of the parameters' properties and the editor modes are not saved: they
         # are set again.
         missing = [prop for prop in QUALITY_PROPERTIES if prop not in obj.PropertiesList]
+        earlier = [name for name in EARLIER_DEFAULTS if parameters.properties()[name][0] not in obj.PropertiesList]
         touched = "Touched" in obj.State
         self.add_properties(obj, obj.Mode if "Mode" in obj.PropertiesList else "isotropic")
+        for name in earlier:  # a recompute gives what the version that saved it gave
+            _store(obj, name, EARLIER_DEFAULTS[name])
         for name, (prop, kind, _) in parameters.properties().items():
             if kind in parameters.CONSTRAINT_TYPES:
                 _store(obj, name, getattr(obj, prop))

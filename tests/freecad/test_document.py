@@ -208,6 +208,23 @@ class DocumentTest(unittest.TestCase):
         self.doc.recompute()
         self.assertEqual(other.SelfIntersections, 0)  # counted by the new run
 
+    def test_a_document_saved_before_the_creases_were_held_recomputes_as_it_did(self):
+        """A feature saved before HoldCreases existed gets it off on reload (the default then),
+        not the default now; one saved with it keeps its value."""
+        old, new = (LiftRemesh.remesh_objects(self.doc, [self.block], vertices=300)[0] for _ in range(2))
+        self.assertTrue(new.HoldCreases)  # the default
+        old.removeProperty("HoldCreases")  # as an earlier version saved it
+        names = old.Name, new.Name
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "older.FCStd")
+            self.doc.saveAs(path)
+            FreeCAD.closeDocument(self.doc.Name)
+            self.doc = FreeCAD.openDocument(path)
+        old, new = (self.doc.getObject(name) for name in names)
+        self.assertFalse(old.HoldCreases)
+        self.assertTrue(new.HoldCreases)
+        self.assertNotIn("Touched", old.State)
+
 
 # The property types of the parameters before they carried the table's ranges (issue 34).
 PLAIN_TYPES = {"integer": "App::PropertyInteger", "real": "App::PropertyFloat"}

@@ -46,9 +46,11 @@ struct RemeshParams {
     double feature_angle = 30.0;
     //! Sites held on every crease over the feature angle and on its corners through the
     //! optimisation (crease_sites.h), so that they come out as vertices exactly on them with
-    //! triangles of CVT shape along them, rather than only moved there afterwards. Default false:
-    //! on thin flanges, small holes and tessellated soups it still costs (docs/known-gaps.md).
-    bool hold_creases = false;
+    //! triangles of CVT shape along them, rather than only moved there afterwards (false: the
+    //! crease snap alone, after the triangulation). Default true: a part whose surface they break
+    //! is remeshed with its creases snapped to (pipeline.h); on soups of intersecting parts they
+    //! cost (docs/known-gaps.md).
+    bool hold_creases = true;
     //! Local sizing (size_field.h): smaller edges where the part is thinner than the edge
     //! length or bends tightly, graded and bounded by the three below, through the CVT's density
     //! (times rho^delta). Default false: with a vertex count the sites a thin part takes are
