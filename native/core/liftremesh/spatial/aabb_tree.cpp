@@ -10,7 +10,6 @@
 #include <limits>
 #include <map>
 #include <mutex>
-#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -162,8 +161,8 @@ struct Builder {
 void bound_boxes(std::vector<Node>& nodes, const std::vector<Box>& boxes) {
     for (size_t i = nodes.size(); i-- > 0;) {
         Node& node = nodes[i];
-        node.box = Box::empty();
         if (node.count > 0) {
+            node.box = Box::empty();
             for (int32_t t = node.first; t < node.first + node.count; ++t) node.box.add(boxes[t]);
         } else {
             node.box = nodes[node.first].box;
