@@ -428,32 +428,35 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
     to.boundary_vertices_snapped += run.boundary_vertices_snapped;
 }
 
+// Whether `out` has the Euler characteristic the report expects of the remeshed `in`, so that it
+// raises no topology warning.
+bool keeps_topology(const MeshQuality& in, const MeshQuality& out) {
+    RemeshReport run;
+    run.input = in;
+    run.output = out;
+    return out.euler_characteristic == expected_euler_characteristic(run);
+}
+
 // Whether a small closed piece came out as the surface it is (closed, manifold, with the Euler
 // characteristic the report expects of it, so that it raises no topology warning) and with no
 // triangle worse than its input's worst, or kKappaFloor: else its input's triangles are better.
-bool keeps_piece(const MeshQuality& in, const Mesh& out) {
-    if (out.triangles.rows() == 0) return false;
-    RemeshReport run;
-    run.input = in;
-    run.output = measure_quality(out);
-    const MeshQuality& q = run.output;
-    return q.boundary_edges == 0 && q.nonmanifold_edges == 0 &&
-           q.euler_characteristic == expected_euler_characteristic(run) && q.kappa_min >= std::min(in.kappa_min, kKappaFloor);
+bool keeps_piece(const MeshQuality& in, const MeshQuality& out) {
+    return out.triangles > 0 && out.boundary_edges == 0 && out.nonmanifold_edges == 0 && keeps_topology(in, out) &&
+           out.kappa_min >= std::min(in.kappa_min, kKappaFloor);
 }
 
-// What a piece's output has wrong that its input (`in`, measured) has not: a topology other than
-// the report expects of it, and each edge folded shut, non-manifold edge or hole more than the
-// input's. Zero for a sound surface; no triangle at all counts as the worst.
-long surface_defects(const MeshQuality& in, const Mesh& out) {
-    if (out.triangles.rows() == 0) return std::numeric_limits<long>::max();
-    RemeshReport run;
-    run.input = in;
-    run.output = measure_quality(out);
-    const MeshQuality& q = run.output;
-    return (q.euler_characteristic == expected_euler_characteristic(run) ? 0 : 1) +
-           std::max(0L, q.folded_edges - in.folded_edges) + std::max(0L, q.nonmanifold_edges - in.nonmanifold_edges) +
-           std::max(0L, q.boundary_loops - in.boundary_loops);
+// What a piece's output (`out`, measured) has wrong that its input (`in`) has not: a topology
+// other than the report expects of it, and each edge folded shut, non-manifold edge or hole more
+// than the input's. Zero for a sound surface; no triangle at all counts as the worst.
+long surface_defects(const MeshQuality& in, const MeshQuality& out) {
+    if (out.triangles == 0) return std::numeric_limits<long>::max();
+    return (keeps_topology(in, out) ? 0 : 1) + std::max(0L, out.folded_edges - in.folded_edges) +
+           std::max(0L, out.nonmanifold_edges - in.nonmanifold_edges) +
+           std::max(0L, out.boundary_loops - in.boundary_loops);
 }
+
+// A piece's output measured; an empty one (a run that made no triangle) has no triangle.
+MeshQuality measured(const Mesh& out) { return out.triangles.rows() > 0 ? measure_quality(out) : MeshQuality{}; }
 
 // Largest share of the input's area a closed piece may have to come out as its input's triangles
 // when remeshing it fails (remesh_one_of_many).
@@ -488,8 +491,9 @@ Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& pa
         } catch (const TopologyFailure&) { // too few sites for a triangle
             if (!small) throw;
         }
+        MeshQuality got = small || holding ? measured(part) : MeshQuality{};
         if (holding && run.crease_sites > 0) {
-            const long defects = surface_defects(in, part);
+            const long defects = surface_defects(in, got);
             if (defects > 0) {
                 RemeshParams snapped = params;
                 snapped.hold_creases = false;
@@ -499,14 +503,16 @@ Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& pa
                     other = remesh_piece(piece, seed, snapped, to_unit, spacing, clock, progress, again);
                 } catch (const TopologyFailure&) { // no triangle: the held run stands
                 }
-                if (surface_defects(in, other) < defects) {
+                const MeshQuality other_got = measured(other);
+                if (surface_defects(in, other_got) < defects) {
                     part = std::move(other);
+                    got = other_got;
                     run = std::move(again);
                     run.parts_unheld = 1;
                 }
             }
         }
-        if (!small || keeps_piece(in, part)) {
+        if (!small || keeps_piece(in, got)) {
             add_counts(report, run);
             return part;
         }
