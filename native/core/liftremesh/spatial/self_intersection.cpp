@@ -34,10 +34,10 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
 namespace {
 
 // Whether a corner of `from` that is not one of `onto`'s lies on triangle `onto`: no farther
-// than kTouch times its longest side from its plane and inside each of its sides. Two triangles of a surface that
-// share at most a vertex meet nowhere else; where one's corner lies on the other, as where two
-// sheets meet along a crease each holds a vertex on, FreeCAD's check counts the touch and a
-// mesher sees the sheets fused. (Of two sharing a vertex, a corner on the other is a fold
+// than kTouch times its longest side from its plane and inside each of its sides. Two triangles
+// of a surface that share at most a vertex meet nowhere else; where one's corner lies on the
+// other, as where two sheets meet along a crease each holds a vertex on, FreeCAD's check counts
+// the touch and a mesher sees the sheets fused. (Of two sharing a vertex, a corner on the other is a fold
 // within the fan: counted too, so that no flip takes a touch off the count by giving the two
 // triangles a common vertex.)
 bool vertex_touches(const std::array<int32_t, 3>& from_ids, const std::array<Eigen::Vector3d, 3>& from,

@@ -23,9 +23,9 @@ bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q
 //! Pairs of triangles of `mesh` that cross: a side of one passes through the inside of the
 //! other (segment_crosses_triangle), or a corner of one that is not a corner of the other lies
 //! on it (within a millionth of its longest side: a touch, as FreeCAD's check counts it between
-//! triangles sharing no vertex, where two sheets meet). Triangles sharing an edge are never a pair (a fold onto the neighbour lies
-//! in its plane); of two sharing a vertex only the sides away from it are tested. Coplanar
-//! overlaps are not counted unless a corner touches. `tree` is AabbTree(mesh). Runs in parallel
+//! triangles sharing no vertex, where two sheets meet). Triangles sharing an edge are never a
+//! pair (a fold onto the neighbour lies in its plane); of two sharing a vertex only the sides
+//! away from it are tested. Coplanar overlaps are not counted unless a corner touches. `tree` is AabbTree(mesh). Runs in parallel
 //! (OpenMP's default thread count); the count does not depend on it. At most
 //! kCandidatesPerTriangle #F pairs of triangles whose boxes meet are tested (a surface has 6 to
 //! 8 #F: a triangle's box meets those of the dozen triangles around its corners): past that,
