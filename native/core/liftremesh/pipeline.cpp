@@ -405,6 +405,13 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const PoorTriangleStats mended = mend_poor_triangles(out, reference);
     report.edges_collapsed += mended.collapsed;
     report.vertices_inserted += mended.split;
+    // Last, as every step before keeps the surface on the input: the vertices on the chords of a
+    // curved crease onto the curve (crease_curves.h), with the explicit creases only.
+    if (params.feature_angle < 180.0) {
+        CreaseCurveParams curves = steps.crease_curves;
+        curves.min_turn_deg = onto_creases.min_turn_deg;
+        report.vertices_moved += move_onto_crease_curves(out, *piece.input, curves).moved;
+    }
     clock.end();
     return out;
 }

@@ -45,6 +45,14 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.feature_snap.min_length = 2.0 * spacing * scale;
     s.feature_snap.tolerance = 0.1 * spacing * scale;
 
+    // The output's crease vertices are the snap's, on the chords, or within its 0.02 h depth of
+    // them: those within 0.05 h go onto the curves, by no more than the tolerance (a chord of a
+    // 0.1 mm deflection lies 0.13 h inside a thread's helix at 0.36 mm edges).
+    s.crease_curves.min_length = s.feature_snap.min_length;
+    s.crease_curves.near = 0.05 * spacing * scale;
+    s.crease_curves.max_move = 0.05 * spacing * scale;
+    s.crease_curves.kappa_floor = s.hausdorff_refinement.kappa_floor;
+
     s.quality_polish.tolerance = tolerance;
     s.untangle.tolerance = tolerance;
     return s;

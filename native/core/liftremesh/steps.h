@@ -10,6 +10,7 @@
 #include "liftremesh/repair/patch_refinement.h"
 #include "liftremesh/repair/untangle.h"
 #include "liftremesh/snap/boundary_snap.h"
+#include "liftremesh/snap/crease_curves.h"
 #include "liftremesh/snap/crease_snap.h"
 
 namespace liftremesh {
@@ -36,6 +37,9 @@ struct StepSettings {
     //! The crease snap onto every crease over the feature angle (its min_turn_deg set from
     //! RemeshParams::feature_angle): a vertex moves wherever the crease is cut at all.
     CreaseSnapParams feature_snap;
+    //! The vertices on the creases over the feature angle onto the curves their chords stand for
+    //! (its min_turn_deg set as the feature snap's).
+    CreaseCurveParams crease_curves;
     QualityPolishParams quality_polish;
     FoldedPairParams folded_pairs;
     UntangleParams untangle;

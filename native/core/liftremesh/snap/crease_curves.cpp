@@ -1,0 +1,161 @@
+#include "liftremesh/snap/crease_curves.h"
+
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/compressed_rows.h"
+#include "liftremesh/mesh/creases.h"
+#include "liftremesh/mesh/geometry.h"
+#include "liftremesh/spatial/segment_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace liftremesh {
+
+namespace {
+
+// The creases of the input as chains: each vertex's crease neighbours, and the curve through
+// them (see the header).
+class CreaseCurves {
+public:
+    CreaseCurves(const Mesh& input, const std::vector<CreaseEdge>& creases, const CreaseCurveParams& params)
+        : input_(input), cos_smooth_(std::cos(params.smooth_turn_deg * M_PI / 180.0)),
+          max_ratio_(params.max_chord_ratio) {
+        std::vector<std::pair<int32_t, int32_t>> pairs;
+        for (const CreaseEdge& e : creases) {
+            pairs.emplace_back(e.a, e.b);
+            pairs.emplace_back(e.b, e.a);
+        }
+        next_ = compress_rows(input.points.rows(), pairs);
+    }
+
+    // The curve's point at t in [0, 1] along the chord (p, q): the cubic Hermite curve with the
+    // unit tangents at its ends times the length that makes it a circle's arc where the two
+    // tangents and the chord are a circle's (4 r tan(alpha / 4), alpha the angle between the
+    // tangents, r the radius: L = 2 r sin(alpha / 2) for the chord); the chord's length where
+    // they are parallel.
+    Eigen::Vector3d at(int32_t p, int32_t q, double t) const {
+        const Eigen::Vector3d x0 = point(p), x1 = point(q);
+        const Eigen::Vector3d u0 = tangent(p, q), u1 = -tangent(q, p);
+        const double alpha = std::acos(std::clamp(u0.dot(u1), -1.0, 1.0));
+        const double length = (x1 - x0).norm() * (alpha > 1e-6 ? 2.0 * std::tan(0.25 * alpha) / std::sin(0.5 * alpha) : 1.0);
+        const Eigen::Vector3d m0 = length * u0, m1 = length * u1;
+        const double t2 = t * t, t3 = t2 * t;
+        return (2.0 * t3 - 3.0 * t2 + 1.0) * x0 + (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) * x1 + (t3 - t2) * m1;
+    }
+
+private:
+    Eigen::Vector3d point(int32_t v) const { return input_.points.row(v).transpose(); }
+
+    // The other neighbour a of p on its chain beyond the chord (p, q), if p lies inside a smooth
+    // curve there: p has two crease neighbours, the chain turns at p by less than the smooth
+    // turn, and the chords (a, p) and (p, q) are about as long as each other. Else -1.
+    int32_t smooth_beyond(int32_t p, int32_t q) const {
+        if (next_.end(p) - next_.begin(p) != 2) return -1;
+        const int32_t a = next_.begin(p)[0] == q ? next_.begin(p)[1] : next_.begin(p)[0];
+        if (a == q) return -1;
+        const Eigen::Vector3d in = point(p) - point(a), out = point(q) - point(p);
+        const double d0 = in.norm(), d1 = out.norm();
+        if (!(d0 > 0.0 && d1 > 0.0) || std::max(d0, d1) > max_ratio_ * std::min(d0, d1)) return -1;
+        return in.dot(out) > cos_smooth_ * d0 * d1 ? a : -1;
+    }
+
+    // The curve's unit tangent at p on the chord (p, q), towards q: the parabola's through
+    // (a, p, q) at p if p lies inside a smooth curve (Bessel's), else the parabola's through
+    // (p, q, r) at p if q does, else the chord's direction (a straight chord between corners).
+    Eigen::Vector3d tangent(int32_t p, int32_t q) const {
+        const Eigen::Vector3d x = point(p), y = point(q);
+        const double d1 = (y - x).norm();
+        Eigen::Vector3d m = y - x;
+        if (const int32_t a = smooth_beyond(p, q); a >= 0) {
+            const double d0 = (x - point(a)).norm();
+            m = d1 / (d0 + d1) * (x - point(a)) / d0 + d0 / (d0 + d1) * (y - x) / d1;
+        } else if (const int32_t r = smooth_beyond(q, p); r >= 0) {
+            const double d2 = (point(r) - y).norm();
+            const Eigen::Vector3d first = (y - x) / d1, second = ((point(r) - y) / d2 - first) / (d1 + d2);
+            m = first - d1 * second;
+        }
+        return m.normalized();
+    }
+
+    const Mesh& input_;
+    double cos_smooth_ = 1.0, max_ratio_ = 1.0;
+    CompressedRows next_;
+};
+
+} // namespace
+
+CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const CreaseCurveParams& params) {
+    if (!(params.near >= 0.0) || !(params.max_move >= 0.0) || !(params.min_length >= 0.0) ||
+        !(params.smooth_turn_deg > 0.0 && params.smooth_turn_deg < 90.0) || !(params.max_chord_ratio >= 1.0) ||
+        !std::isfinite(params.near) || !std::isfinite(params.max_move))
+        throw InvalidInput("move_onto_crease_curves: a parameter is out of range");
+    CreaseCurveStats stats;
+    if (params.near == 0.0 || params.max_move == 0.0 || mesh.triangles.rows() == 0) return stats;
+    const std::vector<CreaseEdge> creases = crease_edges(input, params.min_turn_deg, params.min_length);
+    stats.creases = static_cast<long>(creases.size());
+    if (creases.empty()) return stats;
+    const CreaseCurves curves(input, creases, params);
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+    double total = 0.0;
+    for (const CreaseEdge& e : creases) {
+        segments.emplace_back(input.points.row(e.a).transpose(), input.points.row(e.b).transpose());
+        total += (segments.back().second - segments.back().first).norm();
+    }
+    // Samples half a mean crease edge apart, or ten reaches if farther: a few a chord.
+    const SegmentIndex index(segments, std::max(10.0 * params.near, 0.5 * total / static_cast<double>(segments.size())));
+
+    const CompressedRows fans = vertex_triangles(mesh);
+    auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
+    auto unit_normal = [&](long f) { return triangle_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
+    auto kappa = [&](long f) { return triangle_kappa(corner(f, 0), corner(f, 1), corner(f, 2)); };
+    const double cos_turn = std::cos(30.0 * M_PI / 180.0);
+    std::vector<int32_t> found;
+    std::vector<Eigen::Vector3d> normals_before;
+    for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
+        if (fans.begin(v) == fans.end(v)) continue;
+        const Eigen::Vector3d x = mesh.points.row(v).transpose();
+        // The nearest crease chord within reach, and the vertex's place along it.
+        index.near(x, params.near, found);
+        double best = params.near;
+        int32_t chord = -1;
+        for (int32_t s : found) {
+            const double d = (closest_point_on_segment(x, segments[s].first, segments[s].second) - x).norm();
+            if (d <= best) {
+                best = d;
+                chord = s;
+            }
+        }
+        if (chord < 0) continue;
+        const auto& [a, b] = segments[chord];
+        const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        Eigen::Vector3d y = curves.at(creases[chord].a, creases[chord].b, t);
+        const double move = (y - x).norm();
+        if (!(move > 0.0)) continue;
+        if (move > params.max_move) y = x + (params.max_move / move) * (y - x);
+        // The fan as it was: its normals and its worst kappa.
+        normals_before.clear();
+        double worst_before = std::numeric_limits<double>::infinity();
+        for (const int32_t* f = fans.begin(v); f != fans.end(v); ++f) {
+            normals_before.push_back(unit_normal(*f));
+            worst_before = std::min(worst_before, kappa(*f));
+        }
+        mesh.points.row(v) = y.transpose();
+        bool keep = true;
+        double worst_after = std::numeric_limits<double>::infinity();
+        for (const int32_t* f = fans.begin(v); f != fans.end(v) && keep; ++f) {
+            keep = unit_normal(*f).dot(normals_before[f - fans.begin(v)]) >= cos_turn;
+            worst_after = std::min(worst_after, kappa(*f));
+        }
+        keep = keep && worst_after >= std::min(params.kappa_floor, worst_before);
+        if (keep)
+            ++stats.moved;
+        else
+            mesh.points.row(v) = x.transpose();
+    }
+    return stats;
+}
+
+} // namespace liftremesh
