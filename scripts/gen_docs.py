@@ -115,7 +115,7 @@ FIELDS = {
                          "corner of an open input's boundary, or on the longest edge of a triangle "
                          "under kappa 0.3",
     "edges_flipped": "edges flipped at the end: for triangle quality, onto knife edges, out of crossings",
-    "vertices_moved": "vertices moved at the end: for triangle quality, onto knife edges, out of crossings",
+    "vertices_moved": "vertices moved at the end: for triangle quality, onto creases and their curves, out of crossings",
     "boundary_vertices_snapped": "output boundary vertices moved onto the input's boundary, its "
                                  "corners included (0 for a closed input)",
     "stray_components_removed": "small closed pieces of the output standing for no part of the input "

@@ -55,8 +55,9 @@ struct RemeshReport {
                                          //!< where a triangle under kappa 0.3 had its longest edge split (edge_collapse.h)
     long edges_flipped = 0;              //!< edges flipped at the end: for quality (quality_polish.h), onto knife
                                          //!< edges (crease_snap.h), out of crossings (untangle.h)
-    long vertices_moved = 0;             //!< vertex moves onto knife edges (crease_snap.h), for triangle quality
-                                         //!< at the end (quality_polish.h), out of crossings (untangle.h)
+    long vertices_moved = 0;             //!< vertex moves onto creases (crease_snap.h) and their curves
+                                         //!< (crease_curves.h), for triangle quality at the end
+                                         //!< (quality_polish.h), out of crossings (untangle.h)
     long boundary_vertices_snapped = 0;  //!< moved onto the input's boundary (boundary_snap.h)
     long stray_components_removed = 0;   //!< small closed pieces standing for no part of the input,
                                          //!< removed (stray_components.h)
