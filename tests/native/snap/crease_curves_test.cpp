@@ -4,6 +4,8 @@
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/snap/crease_curves.h"
+#include "liftremesh/spatial/aabb_tree.h"
+#include "liftremesh/spatial/self_intersection.h"
 #include "helpers.h"
 #include "topology_helpers.h"
 
@@ -185,6 +187,37 @@ TEST(CreaseCurves, RefuseAMoveThatWouldSpoilATriangle) {
     int worse = 0;
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) worse += worst_kappa_at(unfloored, v) < worst_kappa_at(was, v);
     EXPECT_GT(worse, 0);
+}
+
+TEST(CreaseCurves, MoveNoVertexThroughAnotherPartOfTheSurface) {
+    const std::vector<Eigen::Vector2d> circle = arc({0.0, 0.0}, 1.0, 0.0, 2.0 * kPi, 16, true);
+    // A cup: the top rim a crease, the bottom one a border, whose vertices stay.
+    Mesh input = prism(circle, 0.3, 1, true);
+    std::vector<Eigen::Index> cup;
+    for (Eigen::Index f = 0; f < input.triangles.rows(); ++f)
+        if ((input.triangles.row(f).array() != input.points.rows() - 2).all()) cup.push_back(f);
+    input.triangles = Triangles(input.triangles(cup, Eigen::all));
+    const Mesh strip = prism(circle, 0.3, 4, false);
+    // A sheet standing across the first chord's middle between the chord (0.981 from the axis
+    // there) and the circle, as the other part of an assembly touching this one would.
+    const double mid = kPi / 16.0, at = 0.99;
+    const Eigen::Vector3d radial(std::cos(mid), std::sin(mid), 0.0), along(-std::sin(mid), std::cos(mid), 0.0);
+    std::vector<Eigen::Vector3d> corners;
+    for (double z : {0.05, 0.45})
+        for (double t : {-0.08, 0.08}) corners.push_back(at * radial + t * along + Eigen::Vector3d(0.0, 0.0, z));
+    const Mesh sheet = test::make_mesh(corners, std::vector<std::array<int32_t, 3>>{{0, 1, 3}, {0, 3, 2}});
+    Mesh mesh = test::joined(strip, sheet);
+    ASSERT_EQ(count_self_intersections(mesh, AabbTree(mesh)), 0);
+    const Eigen::Index middle = strip.points.rows() / 2 + 2; // the top ring's first chord's middle
+    const Eigen::Vector3d was = mesh.points.row(middle).transpose();
+    move_onto_crease_curves(mesh, input, unbounded());
+    EXPECT_EQ(count_self_intersections(mesh, AabbTree(mesh)), 0);
+    EXPECT_LT(mesh.points.row(middle).head<2>().norm(), at);
+    // Without the sheet it goes onto the circle, through where the sheet stands.
+    Mesh alone = strip;
+    move_onto_crease_curves(alone, input, unbounded());
+    EXPECT_NEAR(alone.points.row(middle).head<2>().norm(), 1.0, 1e-6);
+    EXPECT_LT(was.head<2>().norm(), at);
 }
 
 TEST(CreaseCurves, RejectParametersOutOfRange) {

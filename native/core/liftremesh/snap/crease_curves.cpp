@@ -4,9 +4,12 @@
 #include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/spatial/aabb_tree.h"
 #include "liftremesh/spatial/segment_index.h"
+#include "liftremesh/spatial/self_intersection.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -111,6 +114,27 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
     auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
     auto unit_normal = [&](long f) { return triangle_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
     auto kappa = [&](long f) { return triangle_kappa(corner(f, 0), corner(f, 1), corner(f, 2)); };
+    // The triangles a fan's may cross, from a tree of the mesh as it was: no vertex moves
+    // farther than max_move, so a box grown by that finds every one.
+    const AabbTree tree(mesh);
+    std::vector<int32_t> near_triangles;
+    auto crossings = [&](Eigen::Index v) {
+        long count = 0;
+        for (const int32_t* f = fans.begin(v); f != fans.end(v); ++f) {
+            const std::array<int32_t, 3> fi = {mesh.triangles(*f, 0), mesh.triangles(*f, 1), mesh.triangles(*f, 2)};
+            const std::array<Eigen::Vector3d, 3> fc = {corner(*f, 0), corner(*f, 1), corner(*f, 2)};
+            const Eigen::Vector3d grow = Eigen::Vector3d::Constant(params.max_move);
+            near_triangles.clear();
+            tree.triangles_meeting_box(fc[0].cwiseMin(fc[1]).cwiseMin(fc[2]) - grow, fc[0].cwiseMax(fc[1]).cwiseMax(fc[2]) + grow,
+                                       near_triangles);
+            for (int32_t g : near_triangles) {
+                if (g == *f) continue;
+                const std::array<int32_t, 3> gi = {mesh.triangles(g, 0), mesh.triangles(g, 1), mesh.triangles(g, 2)};
+                count += triangles_cross(fi, fc, gi, {corner(g, 0), corner(g, 1), corner(g, 2)});
+            }
+        }
+        return count;
+    };
     const double cos_turn = std::cos(30.0 * M_PI / 180.0);
     std::vector<int32_t> found;
     std::vector<Eigen::Vector3d> normals_before;
@@ -135,13 +159,14 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
         const double move = (y - x).norm();
         if (!(move > 0.0)) continue;
         if (move > params.max_move) y = x + (params.max_move / move) * (y - x);
-        // The fan as it was: its normals and its worst kappa.
+        // The fan as it was: its normals, its worst kappa, the triangles it crosses.
         normals_before.clear();
         double worst_before = std::numeric_limits<double>::infinity();
         for (const int32_t* f = fans.begin(v); f != fans.end(v); ++f) {
             normals_before.push_back(unit_normal(*f));
             worst_before = std::min(worst_before, kappa(*f));
         }
+        const long crossed_before = crossings(v);
         mesh.points.row(v) = y.transpose();
         bool keep = true;
         double worst_after = std::numeric_limits<double>::infinity();
@@ -149,7 +174,9 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
             keep = unit_normal(*f).dot(normals_before[f - fans.begin(v)]) >= cos_turn;
             worst_after = std::min(worst_after, kappa(*f));
         }
-        keep = keep && worst_after >= std::min(params.kappa_floor, worst_before);
+        // Off the input's chord, a vertex can meet a part of the surface that the input has
+        // lying on the chord's plane (two housings of a connector touching along a crease).
+        keep = keep && worst_after >= std::min(params.kappa_floor, worst_before) && crossings(v) <= crossed_before;
         if (keep)
             ++stats.moved;
         else
