@@ -174,8 +174,8 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
             keep = unit_normal(*f).dot(normals_before[f - fans.begin(v)]) >= cos_turn;
             worst_after = std::min(worst_after, kappa(*f));
         }
-        // Off the input's chord, a vertex can meet a part of the surface that the input has
-        // lying on the chord's plane (two housings of a connector touching along a crease).
+        // Off the input's chords, a vertex can meet another part of the surface that touches
+        // this one along the crease (two housings of a connector).
         keep = keep && worst_after >= std::min(params.kappa_floor, worst_before) && crossings(v) <= crossed_before;
         if (keep)
             ++stats.moved;
