@@ -65,7 +65,7 @@ class CreaseTest(unittest.TestCase):
         corner 0.29 h from the nearest vertex)."""
         self.check_part("crease_angles", recall=0.98, hold_creases=False)
 
-    @unittest.skip("known gap (docs/known-gaps.md): recall 0.976-0.979 on seeds 1-3 where the input "
+    @unittest.skip("known gap (docs/known-gaps.md): recall 0.975-0.979 on seeds 1-3 where the input "
                    "tessellation's own is 0.81 (its chords of the helical creases lie up to 0.28 h off the "
                    "B-rep), Hausdorff 0.6-1.0% at the knife edge where a flank meets the end face")
     def test_thread(self):
@@ -75,7 +75,7 @@ class CreaseTest(unittest.TestCase):
         """The closest met: corners within 0.1 h, spurious creases under 0.02, and recall 0.95,
         where the input's own edges find 0.81 of the crease samples: the STL export's chords of
         the helices lie up to 0.1 mm (0.28 h) inside the B-rep's, and the output's vertices on them
-        go onto the curve through the chords' ends by up to 0.05 h (crease_curves.h): 0.976-0.979
+        go towards the curve through the chords' ends by up to 0.05 h (crease_curves.h): 0.975-0.979
         on seeds 1-3, 0.82 on the chords. The Hausdorff distance is the knife edge's where the
         upper flank meets the bottom end face: over seeds 1-10, 0.57-1.03% with the creases held
         and 0.55-1.24% without (0.727% and 0.577% at this seed), hence 0.85% here, as neither
