@@ -75,7 +75,7 @@ double worst_kappa_at(const Mesh& mesh, Eigen::Index v) {
 
 CreaseCurveParams unbounded() {
     CreaseCurveParams p;
-    p.near = 1e-9;
+    p.near = 1e-3; // the vertices on chords lie on them, the others farther
     p.max_move = 1.0;
     p.kappa_floor = 0.0;
     return p;

@@ -13,6 +13,7 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
         ++degree_[a];
         ++degree_[b];
         segments_.push_back({input.points.row(a).transpose(), input.points.row(b).transpose()});
+        ends_.emplace_back(a, b);
     }
     for (const auto& [v, count] : degree_)
         if (count != 2) corners_.push_back(input.points.row(v).transpose());
@@ -22,19 +23,25 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
     index_.emplace(segments_, spacing);
 }
 
-std::optional<Eigen::Vector3d> AcuteCreases::closest(const Eigen::Vector3d& p, double radius) const {
+std::optional<AcuteCreases::Nearest> AcuteCreases::nearest(const Eigen::Vector3d& p, double radius) const {
     index_->near(p, radius, found_);
-    std::optional<Eigen::Vector3d> best;
+    std::optional<Nearest> best;
     double best_d2 = radius * radius;
     for (int32_t s : found_) {
         const auto& [a, b] = segments_[s];
         const Eigen::Vector3d x = closest_point_on_segment(p, a, b);
         if (const double d2 = (x - p).squaredNorm(); d2 <= best_d2) {
             best_d2 = d2;
-            best = x;
+            const double length2 = (b - a).squaredNorm();
+            best = Nearest{s, length2 > 0.0 ? std::clamp((p - a).dot(b - a) / length2, 0.0, 1.0) : 0.0, x};
         }
     }
     return best;
+}
+
+std::optional<Eigen::Vector3d> AcuteCreases::closest(const Eigen::Vector3d& p, double radius) const {
+    const std::optional<Nearest> found = nearest(p, radius);
+    return found ? std::optional<Eigen::Vector3d>(found->point) : std::nullopt;
 }
 
 } // namespace liftremesh

@@ -28,11 +28,24 @@ public:
     //! Where a crease ends or meets others: its input vertices with other than two crease edges,
     //! in lexicographic order.
     const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
-    //! The closest point of a crease to p, if one lies within `radius`.
+    //! The input vertices (a, b) of crease edge `s`, in [0, size()).
+    const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
+
+    //! A crease edge's point nearest to a point: the edge, its place t in [0, 1] from a to b,
+    //! and the point.
+    struct Nearest {
+        long segment = -1;
+        double t = 0.0;
+        Eigen::Vector3d point;
+    };
+    //! The crease point nearest to p, if one lies within `radius`.
+    std::optional<Nearest> nearest(const Eigen::Vector3d& p, double radius) const;
+    //! nearest(p, radius)'s point.
     std::optional<Eigen::Vector3d> closest(const Eigen::Vector3d& p, double radius) const;
 
 private:
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments_;
+    std::vector<std::pair<int32_t, int32_t>> ends_; // each segment's input vertices
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
     std::optional<SegmentIndex> index_; // over segments_, sampled every spacing

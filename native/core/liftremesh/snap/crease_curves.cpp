@@ -1,17 +1,17 @@
 #include "liftremesh/snap/crease_curves.h"
 
+#include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/compressed_rows.h"
-#include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/spatial/aabb_tree.h"
-#include "liftremesh/spatial/segment_index.h"
 #include "liftremesh/spatial/self_intersection.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -23,13 +23,14 @@ namespace {
 // them (see the header).
 class CreaseCurves {
 public:
-    CreaseCurves(const Mesh& input, const std::vector<CreaseEdge>& creases, const CreaseCurveParams& params)
+    CreaseCurves(const Mesh& input, const AcuteCreases& creases, const CreaseCurveParams& params)
         : input_(input), cos_smooth_(std::cos(params.smooth_turn_deg * M_PI / 180.0)),
           max_ratio_(params.max_chord_ratio) {
         std::vector<std::pair<int32_t, int32_t>> pairs;
-        for (const CreaseEdge& e : creases) {
-            pairs.emplace_back(e.a, e.b);
-            pairs.emplace_back(e.b, e.a);
+        for (long s = 0; s < creases.size(); ++s) {
+            const auto& [a, b] = creases.ends(s);
+            pairs.emplace_back(a, b);
+            pairs.emplace_back(b, a);
         }
         next_ = compress_rows(input.points.rows(), pairs);
     }
@@ -97,18 +98,11 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
         throw InvalidInput("move_onto_crease_curves: a parameter is out of range");
     CreaseCurveStats stats;
     if (params.near == 0.0 || params.max_move == 0.0 || mesh.triangles.rows() == 0) return stats;
-    const std::vector<CreaseEdge> creases = crease_edges(input, params.min_turn_deg, params.min_length);
-    stats.creases = static_cast<long>(creases.size());
-    if (creases.empty()) return stats;
+    // Sampled every ten reaches: a few samples a chord.
+    const AcuteCreases creases(input, params.min_turn_deg, 10.0 * params.near, params.min_length);
+    stats.creases = creases.size();
+    if (creases.size() == 0) return stats;
     const CreaseCurves curves(input, creases, params);
-    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
-    double total = 0.0;
-    for (const CreaseEdge& e : creases) {
-        segments.emplace_back(input.points.row(e.a).transpose(), input.points.row(e.b).transpose());
-        total += (segments.back().second - segments.back().first).norm();
-    }
-    // Samples half a mean crease edge apart, or ten reaches if farther: a few a chord.
-    const SegmentIndex index(segments, std::max(10.0 * params.near, 0.5 * total / static_cast<double>(segments.size())));
 
     const CompressedRows fans = vertex_triangles(mesh);
     auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
@@ -136,26 +130,15 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Cr
         return count;
     };
     const double cos_turn = std::cos(30.0 * M_PI / 180.0);
-    std::vector<int32_t> found;
     std::vector<Eigen::Vector3d> normals_before;
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
         if (fans.begin(v) == fans.end(v)) continue;
         const Eigen::Vector3d x = mesh.points.row(v).transpose();
-        // The nearest crease chord within reach, and the vertex's place along it.
-        index.near(x, params.near, found);
-        double best = params.near;
-        int32_t chord = -1;
-        for (int32_t s : found) {
-            const double d = (closest_point_on_segment(x, segments[s].first, segments[s].second) - x).norm();
-            if (d <= best) {
-                best = d;
-                chord = s;
-            }
-        }
-        if (chord < 0) continue;
-        const auto& [a, b] = segments[chord];
-        const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-        Eigen::Vector3d y = curves.at(creases[chord].a, creases[chord].b, t);
+        // The nearest crease chord within reach, and the curve's point at the vertex's place along it.
+        const std::optional<AcuteCreases::Nearest> chord = creases.nearest(x, params.near);
+        if (!chord) continue;
+        const auto& [a, b] = creases.ends(chord->segment);
+        Eigen::Vector3d y = curves.at(a, b, chord->t);
         const double move = (y - x).norm();
         if (!(move > 0.0)) continue;
         if (move > params.max_move) y = x + (params.max_move / move) * (y - x);
