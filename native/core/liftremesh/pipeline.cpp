@@ -5,6 +5,7 @@
 #include "liftremesh/cvt/rdt.h"
 #include "liftremesh/cvt/rvd.h"
 #include "liftremesh/cvt/sampling.h"
+#include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/edit/edge_collapse.h"
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
@@ -392,7 +393,10 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     // few places. At feature_angle 180 only the knife edges, which are a repair (Section 6.2.2).
     CreaseSnapParams onto_creases = params.feature_angle < 180.0 ? steps.feature_snap : steps.crease_snap;
     onto_creases.min_turn_deg = std::min(onto_creases.min_turn_deg, params.feature_angle);
-    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, onto_creases);
+    // Found once: the crease curves below follow the same creases (their length too).
+    const AcuteCreases creases_over_angle(*piece.input, onto_creases.min_turn_deg, 0.5 * onto_creases.radius,
+                                          onto_creases.min_length);
+    const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, creases_over_angle, onto_creases);
     clock.end();
 
     // The worst triangles raised by flips and vertex moves that keep the surface on the input;
@@ -410,7 +414,8 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     if (params.feature_angle < 180.0) {
         CreaseCurveParams curves = steps.crease_curves;
         curves.min_turn_deg = onto_creases.min_turn_deg;
-        report.vertices_moved += move_onto_crease_curves(out, *piece.input, curves).moved;
+        curves.min_length = onto_creases.min_length;
+        report.vertices_moved += move_onto_crease_curves(out, *piece.input, creases_over_angle, curves).moved;
     }
     clock.end();
     return out;

@@ -1,6 +1,7 @@
 // Vertices on the chords of a curved crease onto the curve: the rims of a 16-sided prism (a
 // cylinder as a CAD export tessellates it) go onto the circle, a cube's straight creases and a
 // slot's straight sides between two arcs stay straight, and no vertex moves farther than asked.
+#include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/geometry.h"
 #include "liftremesh/snap/crease_curves.h"
@@ -125,6 +126,24 @@ TEST(CreaseCurves, MoveNoVertexFartherThanAsked) {
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v)
         largest = std::max(largest, (mesh.points.row(v) - was.points.row(v)).norm());
     EXPECT_NEAR(largest, p.max_move, 1e-12);
+}
+
+// The pipeline hands the step the crease snap's creases, sampled at the snap's spacing: the moves
+// are those of the creases the step finds itself, at spacings from a tenth of a chord to two.
+TEST(CreaseCurves, TakeTheSameStepsWithCreasesFoundAtAnySpacing) {
+    const std::vector<Eigen::Vector2d> circle = arc({0.0, 0.0}, 1.0, 0.0, 2.0 * kPi, 16, true);
+    const Mesh input = prism(circle, 0.3, 1, true);
+    const Mesh was = prism(circle, 0.3, 4, false);
+    const CreaseCurveParams p = unbounded();
+    Mesh own = was;
+    const long moved = move_onto_crease_curves(own, input, p).moved;
+    ASSERT_EQ(moved, 2 * 16 * 3);
+    for (const double spacing : {0.04, 0.4, 0.8}) {
+        Mesh given = was;
+        const AcuteCreases creases(input, p.min_turn_deg, spacing, p.min_length);
+        EXPECT_EQ(move_onto_crease_curves(given, input, creases, p).moved, moved) << "spacing " << spacing;
+        EXPECT_EQ(given.points, own.points) << "spacing " << spacing;
+    }
 }
 
 TEST(CreaseCurves, LeaveStraightCreasesStraight) {

@@ -81,6 +81,27 @@ TEST(CreaseSnap, PutsTheRowOfAKnifeEdgeBackOnIt) {
     EXPECT_GE(test::min_kappa(mesh), 0.45);
 }
 
+// The pipeline finds the creases once for the snap and the crease curves (crease_curves.h): the
+// snap moves the vertices it moves onto the creases it finds itself, whatever their spacing.
+TEST(CreaseSnap, TakesTheSameStepsWithCreasesFoundAtAnySpacing) {
+    const double h = 0.1, offset = 0.3 * h;
+    const Mesh input = wedge(30.0, 1.0, 1.0);
+    const test::OwnedReference reference(input);
+    Mesh own = wedge(30.0, 1.0, 1.0, h, offset);
+    const CreaseSnapParams params = params_for(h);
+    const CreaseSnapStats stats = snap_to_acute_creases(own, reference, params);
+    ASSERT_EQ(stats.moved, 11);
+    for (const double spacing : {0.01, 1.0, 3.0}) {
+        Mesh given = wedge(30.0, 1.0, 1.0, h, offset);
+        const AcuteCreases creases(input, params.min_turn_deg, spacing, params.min_length);
+        const CreaseSnapStats with = snap_to_acute_creases(given, reference, creases, params);
+        EXPECT_EQ(with.moved, stats.moved) << "spacing " << spacing;
+        EXPECT_EQ(with.flipped, stats.flipped) << "spacing " << spacing;
+        EXPECT_EQ(given.points, own.points) << "spacing " << spacing;
+        EXPECT_EQ(given.triangles, own.triangles) << "spacing " << spacing;
+    }
+}
+
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
     const double h = 0.1;
     {

@@ -89,17 +89,28 @@ private:
     CompressedRows next_;
 };
 
-} // namespace
-
-CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const CreaseCurveParams& params) {
+void check_params(const CreaseCurveParams& params) {
     if (!(params.near >= 0.0) || !(params.max_move >= 0.0) || !(params.min_length >= 0.0) ||
         !(params.smooth_turn_deg > 0.0 && params.smooth_turn_deg < 90.0) || !(params.max_chord_ratio >= 1.0) ||
         !std::isfinite(params.near) || !std::isfinite(params.max_move))
         throw InvalidInput("move_onto_crease_curves: a parameter is out of range");
+}
+
+} // namespace
+
+CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const CreaseCurveParams& params) {
+    check_params(params);
+    if (params.near == 0.0 || params.max_move == 0.0 || mesh.triangles.rows() == 0) return {};
+    // Sampled every ten reaches: a few samples a chord.
+    return move_onto_crease_curves(mesh, input, AcuteCreases(input, params.min_turn_deg, 10.0 * params.near, params.min_length),
+                                   params);
+}
+
+CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const AcuteCreases& creases,
+                                         const CreaseCurveParams& params) {
+    check_params(params);
     CreaseCurveStats stats;
     if (params.near == 0.0 || params.max_move == 0.0 || mesh.triangles.rows() == 0) return stats;
-    // Sampled every ten reaches: a few samples a chord.
-    const AcuteCreases creases(input, params.min_turn_deg, 10.0 * params.near, params.min_length);
     stats.creases = creases.size();
     if (creases.size() == 0) return stats;
     const CreaseCurves curves(input, creases, params);

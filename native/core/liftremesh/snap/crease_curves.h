@@ -21,6 +21,7 @@
 // touches this one along the crease.
 #pragma once
 
+#include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
 
@@ -55,5 +56,10 @@ struct CreaseCurveStats {
 //! Moves vertices of `mesh` onto the curves of the creases of `input` (see above). Vertex moves
 //! only: the mesh's connectivity is kept. Throws InvalidInput if a parameter is out of range.
 CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const CreaseCurveParams& params);
+
+//! The same with the creases found already: `creases` must be AcuteCreases(input,
+//! params.min_turn_deg, any spacing, params.min_length), as the crease snap's are (crease_snap.h).
+CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const AcuteCreases& creases,
+                                         const CreaseCurveParams& params);
 
 } // namespace liftremesh

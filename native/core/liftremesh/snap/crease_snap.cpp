@@ -181,11 +181,8 @@ private:
     std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
 };
 
-} // namespace
-
-CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, const CreaseSnapParams& params) {
-    const Mesh& input = reference.mesh;
-    const AabbTree& input_tree = reference.tree;
+// Throws InvalidInput, naming the step, if an index or a parameter is out of range.
+void check_snap(const Mesh& mesh, const Mesh& input, const CreaseSnapParams& params) {
     check_indices(mesh, "snapped mesh");
     check_indices(input, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -195,8 +192,21 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
         !(params.min_length >= 0.0))
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
                            "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
+}
+
+} // namespace
+
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, const CreaseSnapParams& params) {
+    check_snap(mesh, reference.mesh, params);
+    return snap_to_acute_creases(
+        mesh, reference, AcuteCreases(reference.mesh, params.min_turn_deg, 0.5 * params.radius, params.min_length), params);
+}
+
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, const AcuteCreases& creases,
+                                      const CreaseSnapParams& params) {
+    check_snap(mesh, reference.mesh, params);
+    const AabbTree& input_tree = reference.tree;
     CreaseSnapStats stats;
-    const AcuteCreases creases(input, params.min_turn_deg, 0.5 * params.radius, params.min_length);
     stats.creases = creases.size();
     if (creases.size() == 0 || mesh.triangles.rows() == 0) return stats;
     Snapper snapper(mesh, input_tree, params);

@@ -30,6 +30,7 @@
 // tolerance already, nothing moves.
 #pragma once
 
+#include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/spatial/reference.h"
@@ -73,5 +74,11 @@ struct CreaseSnapStats {
 //! moves and flips only; a flip never makes an edge the mesh has). Throws InvalidInput if a
 //! parameter is out of range or an index is.
 CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const CreaseSnapParams& params);
+
+//! The same with the creases found already: `creases` must be AcuteCreases(input.mesh,
+//! params.min_turn_deg, any spacing, params.min_length), whose answers do not depend on the
+//! spacing, so that the steps that follow the same creases (crease_curves.h) share them.
+CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const AcuteCreases& creases,
+                                      const CreaseSnapParams& params);
 
 } // namespace liftremesh
