@@ -286,7 +286,7 @@ inline LiftedPoints sites_near(const LiftedSurface& s, int n, double noise, unsi
     std::normal_distribution<double> gauss(0.0, noise);
     LiftedPoints v(n, s.dimension());
     for (int k = 0; k < n; ++k) {
-        const long f = pick(rng);
+        const long f = s.row_of[pick(rng)]; // the triangles as given
         double a = u01(rng), b = u01(rng);
         if (a + b > 1) {
             a = 1 - a;

@@ -1,10 +1,12 @@
 #include "liftremesh/cvt/rvd.h"
+#include "liftremesh/cvt/sampling.h"
 #include "liftremesh/lift/density.h"
 #include "liftremesh/lift/normals.h"
 #include "helpers.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <vector>
@@ -173,4 +175,66 @@ TEST(CellAreas, AreTheSameToTheBitWhateverTheThreadCount) {
     for (int call = 0; call < 3; ++call) // the first call splits by count, the next ones by work
         EXPECT_EQ(restricted_cell_areas(s, v, 3, &three), restricted_cell_areas(s, v, 1, &one)) << "call " << call;
     EXPECT_EQ(static_cast<long>(one.work.size()), static_cast<long>(s.triangles.rows()));
+}
+
+// The surface keeps its triangles along a Morton curve whatever order they come in (a torus's
+// triangles shuffled here), each row the given triangle with its weight, row_of saying where
+// each went: neighbouring rows are neighbours on the surface, which the given order's are not.
+// The cells are those of the triangles in their own order, up to rounding, and the sites a seed
+// draws are those of the given order.
+TEST(LiftedSurface, KeepsItsTrianglesAlongAMortonCurveWhateverTheirOrder) {
+    const Mesh m = test::make_torus(0.6, 0.25, 60, 28);
+    Mesh shuffled = m;
+    std::vector<int32_t> order(static_cast<size_t>(m.triangles.rows()));
+    for (size_t f = 0; f < order.size(); ++f) order[f] = static_cast<int32_t>(f);
+    std::shuffle(order.begin(), order.end(), std::mt19937(7));
+    Eigen::VectorXd weights(m.triangles.rows());
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
+        shuffled.triangles.row(f) = m.triangles.row(order[f]);
+        weights[f] = 1.0 + 0.001 * order[f];
+    }
+    const LiftedSurface s = make_lifted_surface(LiftedPoints(shuffled.points), shuffled.triangles, weights);
+    ASSERT_EQ(s.row_of.size(), order.size());
+    std::vector<char> taken(order.size(), 0);
+    for (size_t g = 0; g < order.size(); ++g) {
+        const int32_t f = s.row_of[g];
+        ASSERT_TRUE(f >= 0 && f < static_cast<int32_t>(order.size()) && !taken[f]) << "triangle " << g;
+        taken[f] = 1;
+        EXPECT_EQ(s.triangles.row(f), shuffled.triangles.row(static_cast<Eigen::Index>(g)));
+        EXPECT_EQ(s.weights[f], weights[static_cast<Eigen::Index>(g)]);
+    }
+    // Mean distance between the centroids of consecutive triangles, over the mean edge length.
+    auto mean_step = [](const LiftedPoints& points, const Triangles& triangles) {
+        auto centroid = [&](Eigen::Index f) -> Eigen::Vector3d {
+            return (points.row(triangles(f, 0)) + points.row(triangles(f, 1)) + points.row(triangles(f, 2))).transpose() / 3.0;
+        };
+        double steps = 0.0, edges = 0.0;
+        for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+            if (f > 0) steps += (centroid(f) - centroid(f - 1)).norm();
+            edges += (points.row(triangles(f, 1)) - points.row(triangles(f, 0))).norm();
+        }
+        return (steps / static_cast<double>(triangles.rows() - 1)) / (edges / static_cast<double>(triangles.rows()));
+    };
+    EXPECT_GT(mean_step(LiftedPoints(shuffled.points), shuffled.triangles), 5.0);
+    EXPECT_LT(mean_step(s.points, s.triangles), 2.0);
+
+    const LiftedSurface in_order = make_lifted_surface(LiftedPoints(m.points), m.triangles);
+    const LiftedSurface unweighted = make_lifted_surface(LiftedPoints(shuffled.points), shuffled.triangles);
+    const LiftedPoints v = test::sites_near(in_order, 400, 0.01, 3);
+    const Eigen::VectorXd areas = restricted_cell_areas(unweighted, v, 2), reference = restricted_cell_areas(in_order, v, 2);
+    EXPECT_LT((areas - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.sum());
+    // The sums and the draws go by the given order: stored the other way round, the same.
+    LiftedSurface reversed = unweighted;
+    const Eigen::Index nf = unweighted.triangles.rows();
+    for (Eigen::Index f = 0; f < nf; ++f) {
+        reversed.triangles.row(nf - 1 - f) = unweighted.triangles.row(f);
+        reversed.weights[nf - 1 - f] = unweighted.weights[f];
+        reversed.u1.row(nf - 1 - f) = unweighted.u1.row(f);
+        reversed.u2.row(nf - 1 - f) = unweighted.u2.row(f);
+        reversed.valid[nf - 1 - f] = unweighted.valid[f];
+    }
+    for (int32_t& f : reversed.row_of) f = static_cast<int32_t>(nf - 1 - f);
+    EXPECT_EQ(random_sites(reversed, 50, 11), random_sites(unweighted, 50, 11));
+    EXPECT_EQ(sampling_mass(reversed), sampling_mass(unweighted));
+    EXPECT_EQ(lifted_area(reversed), lifted_area(unweighted));
 }

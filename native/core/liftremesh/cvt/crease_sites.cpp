@@ -77,7 +77,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     // header), not weighted by their areas: on a CAD tessellation a crease vertex's triangles
     // include slivers reaching far across a face, whose weight is that of places far away.
     Eigen::VectorXd count = Eigen::VectorXd::Zero(nv), mass = Eigen::VectorXd::Zero(nv);
-    for (Eigen::Index f = 0; f < surface.triangles.rows(); ++f) {
+    for (const int32_t f : surface.row_of) { // as given: the sums do not depend on the surface's order
         if (!surface.valid[f]) continue;
         const double w = surface.weights.size() > 0 ? std::sqrt(surface.weights[f]) : 1.0;
         for (int j = 0; j < 3; ++j) {

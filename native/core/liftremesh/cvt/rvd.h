@@ -23,19 +23,26 @@
 
 namespace liftremesh {
 
-//! The (lifted) surface the diagram is restricted to, with what every evaluation needs.
+//! The (lifted) surface the diagram is restricted to, with what every evaluation needs. Its
+//! triangles, and the rows of every per-triangle field, lie along a Morton curve of their 3D
+//! centroids: the diagram's processing order, in which neighbouring triangles, which share
+//! sites, are neighbours in memory too, whatever order they came in (a soup, a mesh whose
+//! triangles were split and appended).
 struct LiftedSurface {
-    LiftedPoints points;     //!< #V by d
+    LiftedPoints points;     //!< #V by d, in the order given
     Triangles triangles;     //!< #F by 3
     Eigen::VectorXd weights; //!< #F objective weights rho_p^delta (Eq. 25)
     LiftedPoints u1, u2;     //!< #F by d orthonormal tangent basis of each triangle (Eq. 15)
     std::vector<char> valid; //!< #F false for flat triangles (no basis): ignored (Section 3.1)
-    std::vector<long> order; //!< #F triangles along a Morton curve of their 3D centroids: the
-                             //!< diagram's processing order (neighbouring triangles share sites)
+    //! #F: the row of each triangle as they were given (the k-th given is row row_of[k]). Sums
+    //! over the triangles and the random sampling take them in that order, so that neither
+    //! depends on the processing order.
+    std::vector<int32_t> row_of;
     int dimension() const { return static_cast<int>(points.cols()); }
 };
 
-//! Builds the surface and its tangent bases. `weights` empty means all ones.
+//! Builds the surface and its tangent bases, the triangles and weights reordered (see above).
+//! `weights` empty means all ones.
 LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eigen::VectorXd weights = {});
 
 //! Total area of the valid triangles of the (lifted) surface.
@@ -140,7 +147,7 @@ struct RvdCache {
     double spacing = 0.0;            //!< median distance from a site to its nearest one, at `anchor`
     double rebuild_distance = 0.0;   //!< sites farther than this from `anchor` are movers
     std::vector<int32_t> seeds;      //!< #F a site whose cell met the triangle last time, or -1
-    //! #F, in processing order (surface.order): the work each triangle took last time (polygons
+    //! #F, by row: the work each triangle took last time (polygons
     //! and bisector tests), which splits the next diagram's triangles into chunks of even work.
     std::vector<int32_t> work;
     long rebuilds = 0;               //!< how many times the lists were made (for benchmarks)

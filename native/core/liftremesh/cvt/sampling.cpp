@@ -21,17 +21,19 @@ double sampling_weight(const LiftedSurface& surface, Eigen::Index f) {
 
 double sampling_mass(const LiftedSurface& surface) {
     double total = 0.0;
-    for (Eigen::Index f = 0; f < surface.triangles.rows(); ++f) total += sampling_weight(surface, f);
+    for (const int32_t f : surface.row_of) total += sampling_weight(surface, f);
     return total;
 }
 
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed) {
+    // The triangles as they were given (LiftedSurface::row_of): a seed draws the same sites
+    // whatever order the diagram takes them in.
     const Eigen::Index nf = surface.triangles.rows();
     std::vector<double> cumulative(nf);
     double total = 0.0;
-    for (Eigen::Index f = 0; f < nf; ++f) {
-        total += sampling_weight(surface, f);
-        cumulative[f] = total;
+    for (Eigen::Index g = 0; g < nf; ++g) {
+        total += sampling_weight(surface, surface.row_of[g]);
+        cumulative[g] = total;
     }
     if (!(total > 0.0)) throw InvalidInput("the surface has no triangle of positive area to place sites on");
     std::mt19937_64 rng(seed);
@@ -39,8 +41,8 @@ LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_
     LiftedPoints sites(count, surface.dimension());
     for (long k = 0; k < count; ++k) {
         const double r = u01(rng) * total;
-        const Eigen::Index f = std::min<Eigen::Index>(
-            nf - 1, std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin());
+        const Eigen::Index f = surface.row_of[std::min<Eigen::Index>(
+            nf - 1, std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin())];
         double a = u01(rng), b = u01(rng);
         if (a + b > 1.0) {
             a = 1.0 - a;
