@@ -17,24 +17,31 @@ double sampling_weight(const LiftedSurface& surface, Eigen::Index f) {
                          surface.points.row(surface.triangles(f, 2))) *
            std::sqrt(surface.weights[f]);
 }
+
+// The running sums of the triangles' shares, taken as they were given (LiftedSurface::row_of),
+// so that a seed draws the same sites whatever order the surface stores them in. The shares
+// are worked out row after row, each row's data read after the last one's.
+std::vector<double> cumulative_weights(const LiftedSurface& surface) {
+    const Eigen::Index nf = surface.triangles.rows();
+    std::vector<double> share(static_cast<size_t>(nf));
+    for (Eigen::Index f = 0; f < nf; ++f) share[f] = sampling_weight(surface, f);
+    std::vector<double> cumulative(static_cast<size_t>(nf));
+    double total = 0.0;
+    for (Eigen::Index g = 0; g < nf; ++g) cumulative[g] = total += share[surface.row_of[g]];
+    return cumulative;
+}
+
 } // namespace
 
 double sampling_mass(const LiftedSurface& surface) {
-    double total = 0.0;
-    for (const int32_t f : surface.row_of) total += sampling_weight(surface, f);
-    return total;
+    const std::vector<double> cumulative = cumulative_weights(surface);
+    return cumulative.empty() ? 0.0 : cumulative.back();
 }
 
 LiftedPoints random_sites(const LiftedSurface& surface, long count, std::uint64_t seed) {
-    // The triangles as they were given (LiftedSurface::row_of): a seed draws the same sites
-    // whatever order the diagram takes them in.
     const Eigen::Index nf = surface.triangles.rows();
-    std::vector<double> cumulative(nf);
-    double total = 0.0;
-    for (Eigen::Index g = 0; g < nf; ++g) {
-        total += sampling_weight(surface, surface.row_of[g]);
-        cumulative[g] = total;
-    }
+    const std::vector<double> cumulative = cumulative_weights(surface);
+    const double total = cumulative.empty() ? 0.0 : cumulative.back();
     if (!(total > 0.0)) throw InvalidInput("the surface has no triangle of positive area to place sites on");
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
