@@ -45,9 +45,8 @@ LiftedSurface make_lifted_surface(LiftedPoints points, Triangles triangles, Eige
     for (Eigen::Index f = 0; f < nf; ++f)
         centroids.row(f) = (s.points.row(triangles(f, 0)).leftCols<3>() + s.points.row(triangles(f, 1)).leftCols<3>() +
                             s.points.row(triangles(f, 2)).leftCols<3>()) / 3.0;
-    // The diagram walks the triangles in this order, reading each one's rows: in it, they are
-    // read one after the other (on a million triangles given out of order, a third of the
-    // optimisation's time went to waiting for them).
+    // The diagram walks the triangles in this order, reading each one's rows: stored in it,
+    // they are read one after the other, wherever the input lists them.
     const std::vector<long> order = morton_order(centroids.data(), nf, 3);
     s.triangles.resize(nf, 3);
     s.weights.resize(nf);
