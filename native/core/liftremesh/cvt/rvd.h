@@ -63,7 +63,7 @@ struct PlanarSite {
 //! tangent basis (Eq. 15, surface.u1/u2).
 struct RvdPolygon {
     int32_t site = -1;               //!< k
-    int32_t triangle = -1;           //!< p
+    int32_t triangle = -1;           //!< p: the surface's row (LiftedSurface::row_of maps the given triangles to it)
     int size = 0;                    //!< number of vertices (>= 3), in the triangle's orientation
     const double* planar = nullptr;  //!< size by 2 vertex coordinates in the triangle's frame
     //! edges[i] is the line carrying the edge from vertex i to vertex i+1: a site l >= 0 for the
