@@ -102,6 +102,18 @@ TEST(CreaseSnap, TakesTheSameStepsWithCreasesFoundAtAnySpacing) {
     }
 }
 
+// Corners are where a crease ends or several meet; junctions, where three or more meet: a
+// knife edge's two ends are corners, a cube's eight corners are both.
+TEST(AcuteCreases, JunctionsAreTheCornersWhereThreeCreasesMeet) {
+    const AcuteCreases knife(wedge(30.0, 1.0, 1.0), 120.0, 0.1);
+    EXPECT_EQ(knife.corners().size(), 2u);
+    EXPECT_TRUE(knife.junctions().empty());
+    const AcuteCreases cube(test::make_cube(0.5, 2), 30.0, 0.1);
+    ASSERT_EQ(cube.junctions().size(), 8u);
+    EXPECT_EQ(cube.junctions(), cube.corners());
+    for (const Eigen::Vector3d& j : cube.junctions()) EXPECT_EQ(j.cwiseAbs(), Eigen::Vector3d::Constant(0.5));
+}
+
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
     const double h = 0.1;
     {

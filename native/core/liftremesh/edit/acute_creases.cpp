@@ -15,11 +15,15 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
         segments_.push_back({input.points.row(a).transpose(), input.points.row(b).transpose()});
         ends_.emplace_back(a, b);
     }
-    for (const auto& [v, count] : degree_)
+    for (const auto& [v, count] : degree_) {
         if (count != 2) corners_.push_back(input.points.row(v).transpose());
-    std::sort(corners_.begin(), corners_.end(), [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
+        if (count >= 3) junctions_.push_back(input.points.row(v).transpose());
+    }
+    auto lexicographic = [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
         return std::lexicographical_compare(l.data(), l.data() + 3, r.data(), r.data() + 3);
-    });
+    };
+    std::sort(corners_.begin(), corners_.end(), lexicographic);
+    std::sort(junctions_.begin(), junctions_.end(), lexicographic);
     index_.emplace(segments_, spacing);
 }
 

@@ -28,6 +28,8 @@ public:
     //! Where a crease ends or meets others: its input vertices with other than two crease edges,
     //! in lexicographic order.
     const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
+    //! Of the corners, those where three or more creases meet, in the same order.
+    const std::vector<Eigen::Vector3d>& junctions() const { return junctions_; }
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
 
@@ -48,6 +50,7 @@ private:
     std::vector<std::pair<int32_t, int32_t>> ends_; // each segment's input vertices
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
+    std::vector<Eigen::Vector3d> junctions_;
     std::optional<SegmentIndex> index_; // over segments_, sampled every spacing
     mutable std::vector<int32_t> found_;
 };
