@@ -2,9 +2,10 @@
 // with a chamfered edge (45-degree creases) and a prism whose side creases turn by 30 to 150
 // degrees, remeshed with the crease snap alone (hold_creases off) and with the creases held (the
 // default); every corner (where three creases meet) lies near an output vertex, and the creases
-// lie along output edges that bend. The measure is issue 35's: crease samples within 0.1 h of an
+// lie along output edges that bend. And the junctions of t13's creases. The measure is issue 35's: crease samples within 0.1 h of an
 // output edge over 15 degrees, h the target edge length.
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/mesh_io.h"
 #include "liftremesh/pipeline.h"
 #include "helpers.h"
 #include "topology_helpers.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <vector>
@@ -200,3 +202,53 @@ TEST(CreasePrismKnownGap, DISABLED_CreasesOf30To150DegreesAtRecall099) {
 }
 
 } // namespace
+
+namespace {
+
+// The junctions of a mesh's creases as issue 35 takes them on a mesh without a B-rep: vertices
+// where three or more edges whose two triangles turn by 30 degrees or more meet.
+std::vector<Eigen::Vector3d> crease_junctions(const Mesh& mesh) {
+    std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) by_edge[{mesh.triangles(f, j), mesh.triangles(f, (j + 1) % 3)}] = f;
+    auto normal = [&](Eigen::Index f) { return triangle_normal(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
+    std::map<int32_t, int> degree;
+    for (const auto& [e, f] : by_edge) {
+        const auto twin = by_edge.find({e.second, e.first});
+        if (twin == by_edge.end() || e.first > e.second) continue;
+        if (normal(f).dot(normal(twin->second)) <= std::cos(30.0 * kPi / 180.0)) {
+            ++degree[e.first];
+            ++degree[e.second];
+        }
+    }
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& [v, count] : degree)
+        if (count >= 3) out.push_back(mesh.points.row(v).transpose());
+    return out;
+}
+
+} // namespace
+
+// gmsh_t13_data.stl has its junctions in pairs 0.39 h apart, where facets of 30.5 to 53 degrees
+// meet round the ends of a cylinder; the vertex of one of a pair takes the other's too. Until
+// the junctions no vertex could move onto were inserted (insert_input_points), one of a pair
+// lay 0.26 h from the nearest vertex on seeds 1-3; issue 35 asks for 0.1 h.
+TEST(SharedMeshCreases, EveryJunctionOfT13LiesOnAVertex) {
+    LIFTREMESH_REQUIRE_SHARED(path, "gmsh_t13_data.stl");
+    const Mesh input = read_mesh(path);
+    const int vertices = 6000;
+    const double h = edge_length_for(input, vertices);
+    const std::vector<Eigen::Vector3d> junctions = crease_junctions(input);
+    ASSERT_GE(junctions.size(), 6u);
+    for (const std::uint64_t seed : {1, 2, 3}) {
+        const RemeshResult r = remesh(input, test::params_with(vertices, RemeshParams{}.sigma, seed));
+        double worst = 0.0;
+        for (const Eigen::Vector3d& junction : junctions)
+            worst = std::max(worst, test::distance_to_nearest_vertex(r.mesh, junction) / h);
+        EXPECT_LE(worst, 0.1) << "seed " << seed;
+        EXPECT_GE(r.report.output.kappa_min, 0.3) << "seed " << seed;
+        EXPECT_GE(r.report.output.kappa_mean, 0.9) << "seed " << seed;
+        EXPECT_TRUE(test::topology(r.mesh).closed_oriented_manifold()) << "seed " << seed;
+        EXPECT_EQ(r.report.output.euler_characteristic, r.report.input.euler_characteristic) << "seed " << seed;
+    }
+}

@@ -1,7 +1,9 @@
 // Inserting the input's farthest points: a sharp edge cut off by a chamfer (edge crunching,
-// Section 6.2.2) gets its crease back; a mesh that already lies on its input is left alone.
+// Section 6.2.2) gets its crease back; a mesh that already lies on its input is left alone. And
+// inserting given points of the input (the creases' junctions).
 #include "liftremesh/exceptions.h"
 #include "liftremesh/measure/quality.h"
+#include "liftremesh/mesh/geometry.h"
 #include "liftremesh/polish/hausdorff_refinement.h"
 #include "liftremesh/spatial/aabb_tree.h"
 #include "helpers.h"
@@ -9,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -196,4 +199,93 @@ TEST(HausdorffRefinement, APointOverALowStepsWallStandsNoTriangleAgainstIt) {
         EXPECT_GT((b - a).cross(c - a).normalized().dot(tree.triangle_normal(near.triangle)), -std::sqrt(3.0) / 2.0)
             << "triangle " << t;
     }
+}
+
+namespace {
+
+// The L of crease_input() meshed at edge length kSpacing with a row of vertices on its crease:
+// right triangles of kappa 0.87 on either side.
+Mesh creased() {
+    std::vector<std::vector<Eigen::Vector3d>> rows;
+    for (int i = 4; i > 0; --i) rows.push_back(row(i * kSpacing, 0, kColumns, kSpacing));
+    for (int i = 0; i <= 4; ++i) rows.push_back(row(0, i * kSpacing, kColumns, kSpacing));
+    return strips(rows);
+}
+
+// The worst kappa of the three triangles a split of triangle t at p makes.
+double worst_of_split(const Mesh& m, Eigen::Index t, const Eigen::Vector3d& p) {
+    double worst = 1.0;
+    for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d a = m.points.row(m.triangles(t, j)).transpose(), b = m.points.row(m.triangles(t, (j + 1) % 3)).transpose();
+        worst = std::min(worst, triangle_kappa(a, b, p));
+    }
+    return worst;
+}
+
+} // namespace
+
+// A junction of creases a quarter of an edge from the vertex on the crease next to it (t13's
+// clusters of corners 0.25-0.39 h apart): the triangle it falls in, split there, leaves a needle
+// under the floor; the flips round it and the splits of the needles' long edges give it a vertex
+// with every triangle at the floor or better. Without those splits the point was left out.
+TEST(InsertInputPoints, AJunctionAQuarterEdgeFromAVertexGetsItsOwn) {
+    const Mesh input = crease_input();
+    Mesh m = creased();
+    const Mesh original = m;
+    const Eigen::Vector3d junction(0.0, 4 * kSpacing + 0.25 * kSpacing, 0.0);
+    const ClosestPoint near = AabbTree(m).closest(junction);
+    ASSERT_GE(near.triangle, 0);
+    const HausdorffRefinementParams p = params_for(kSpacing);
+    EXPECT_LT(worst_of_split(m, near.triangle, junction), p.kappa_floor);
+    const test::Topology before = test::topology(m);
+    const HausdorffRefinementStats stats = insert_input_points(m, test::OwnedReference(input), {junction}, 0.02 * kSpacing, p);
+    EXPECT_EQ(stats.inserted, 1);
+    EXPECT_EQ(test::distance_to_nearest_vertex(m, junction), 0.0);
+    EXPECT_GE(test::min_kappa(m), p.kappa_floor);
+    const test::Topology after = test::topology(m);
+    EXPECT_TRUE(after.oriented_manifold());
+    EXPECT_EQ(after.chi, before.chi);
+    EXPECT_EQ(after.boundary_edges, before.boundary_edges);
+    // Every vertex on the input (the L's floor or wall), the old ones where they were.
+    const AabbTree tree(input);
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v)
+        EXPECT_LT(tree.closest(m.points.row(v).transpose()).squared_distance, 1e-20) << v;
+    EXPECT_EQ(m.points.topRows(original.points.rows()), original.points);
+}
+
+// A point with a vertex within the gap is on it already; one whose triangles cannot reach the
+// floor is left out, the mesh as it was.
+TEST(InsertInputPoints, APointOnAVertexOrUnderTheFloorChangesNothing) {
+    const Mesh input = crease_input();
+    const Mesh original = creased();
+    Mesh m = original;
+    const Eigen::Vector3d vertex(0.0, 4 * kSpacing, 0.0);
+    const HausdorffRefinementParams p = params_for(kSpacing);
+    EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.01 * kSpacing, 0)},
+                                  0.02 * kSpacing, p).inserted, 0);
+    EXPECT_EQ(m.points, original.points);
+    EXPECT_EQ(m.triangles, original.triangles);
+    HausdorffRefinementParams strict = p;
+    strict.kappa_floor = 0.99; // no triangle of a split reaches it
+    EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.25 * kSpacing, 0)},
+                                  0.02 * kSpacing, strict).inserted, 0);
+    EXPECT_EQ(m.points, original.points);
+    EXPECT_EQ(m.triangles, original.triangles);
+}
+
+TEST(InsertInputPoints, BadArgumentsAreRejected) {
+    const Mesh input = crease_input();
+    Mesh m = creased();
+    const std::vector<Eigen::Vector3d> points = {Eigen::Vector3d(0.0, 0.3, 0.0)};
+    const HausdorffRefinementParams p = params_for(kSpacing);
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, -1.0, p), InvalidInput);
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, std::nan(""), p), InvalidInput);
+    HausdorffRefinementParams negative = p;
+    negative.kappa_floor = -0.1;
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, negative), InvalidInput);
+    Mesh broken = creased();
+    broken.triangles(0, 0) = 1000;
+    EXPECT_THROW(insert_input_points(broken, test::OwnedReference(input), points, 0.0, p), InvalidInput);
+    Mesh empty;
+    EXPECT_EQ(insert_input_points(empty, test::OwnedReference(input), points, 0.0, p).inserted, 0);
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,9 @@ namespace liftremesh {
 namespace {
 
 using Tri = EditableMesh::Tri;
+
+// The splits that may follow a point's own to lift the triangles round it to the floor.
+constexpr int kMendSplits = 3;
 
 // The input's referenced vertices, then points along each of its edges at most `spacing` apart.
 std::vector<Eigen::Vector3d> edge_samples(const Mesh& input, double spacing) {
@@ -59,7 +63,49 @@ public:
         for (const Witness& w : witnesses) {
             if (inserted == allowed) break;
             if (near_[w.triangle]) continue; // changed this round: its witnesses are sampled again next round
-            if (insert_at(w.triangle, samples[w.sample], uses)) ++inserted;
+            if (insert_at(w.triangle, samples[w.sample], uses, params_.kappa_floor)) ++inserted;
+        }
+        return inserted;
+    }
+
+    // Inserts each of the `points` that `todo` lists and that has no vertex within `gap`
+    // (insert_input_points), in their order; returns how many, adding the flips made to
+    // `flipped`. Leaves in `todo` the points whose closest triangle an insertion before them
+    // changed, for another call.
+    long insert_points(const std::vector<Eigen::Vector3d>& points, double gap, std::vector<size_t>& todo, long& flipped) {
+        const AabbTree tree(mesh_.to_mesh());
+        std::vector<std::pair<size_t, int32_t>> wanted; // a point, its closest triangle
+        std::vector<int32_t> met;
+        for (const size_t i : todo) {
+            met.clear();
+            tree.triangles_within(points[i], gap, met);
+            const bool on_vertex = std::any_of(met.begin(), met.end(), [&](int32_t t) {
+                const Tri& x = mesh_.tris[t];
+                return std::any_of(x.begin(), x.end(), [&](int32_t v) { return (mesh_.points[v] - points[i]).norm() <= gap; });
+            });
+            if (on_vertex) continue;
+            if (const ClosestPoint c = tree.closest(points[i]); c.triangle >= 0) wanted.emplace_back(i, c.triangle);
+        }
+        long inserted = 0;
+        std::vector<char> changed(mesh_.tris.size(), 0); // since the tree was built
+        todo.clear();
+        for (const auto& [i, t] : wanted) {
+            if (changed[t]) { // an insertion before changed the triangle: maybe not its closest now
+                todo.push_back(i);
+                continue;
+            }
+            near_.assign(mesh_.tris.size(), 0);
+            EditableMesh before = mesh_;
+            long flips = 0;
+            if (!insert_and_mend(t, points[i], flips)) {
+                mesh_ = std::move(before);
+                continue;
+            }
+            ++inserted;
+            flipped += flips;
+            changed.resize(mesh_.tris.size(), 1);
+            for (size_t f = 0; f < near_.size(); ++f)
+                if (near_[f]) changed[f] = 1;
         }
         return inserted;
     }
@@ -128,11 +174,51 @@ private:
         return witnesses;
     }
 
-    // Splits triangle t at p, or one of its edges: an edge shared with an unchanged triangle
-    // (both split in two) or a boundary edge (t split in two, p joining the boundary). Of the
-    // splits that turn no triangle over, the one whose worst triangle is best, if that is at
-    // least the floor.
-    bool insert_at(int32_t t, const Eigen::Vector3d& p, const std::unordered_map<uint64_t, EditableMesh::Uses>& uses) {
+    // Splits triangle t at p, flips round the split, then while the worst triangle made is
+    // under the floor, at most kMendSplits times, splits it at the input's point nearest to the
+    // middle of its longest edge and flips again. A point a quarter of an edge from a vertex
+    // splits the triangle it falls in into a needle, whose long edges a flip does not always
+    // shorten: split, they give the short triangles such a point needs. Whether every triangle
+    // made reaches the floor; the caller restores the mesh if not.
+    bool insert_and_mend(int32_t t, const Eigen::Vector3d& p, long& flips) {
+        if (!split_now(t, p)) return false;
+        flips += flip_near_insertions();
+        for (int k = 0;; ++k) {
+            double worst = 2.0;
+            int32_t worst_t = -1;
+            for (size_t f = 0; f < near_.size(); ++f)
+                if (near_[f])
+                    if (const double kappa = mesh_.kappa(mesh_.tris[f]); kappa < worst) {
+                        worst = kappa;
+                        worst_t = static_cast<int32_t>(f);
+                    }
+            if (worst >= params_.kappa_floor) return true;
+            if (k == kMendSplits) return false;
+            const Tri w = mesh_.tris[worst_t];
+            auto length2 = [&](int j) { return (mesh_.points[w[j]] - mesh_.points[w[(j + 1) % 3]]).squaredNorm(); };
+            int longest = 0;
+            for (int j = 1; j < 3; ++j)
+                if (length2(j) > length2(longest)) longest = j;
+            const ClosestPoint on = input_.closest(0.5 * (mesh_.points[w[longest]] + mesh_.points[w[(longest + 1) % 3]]));
+            if (on.triangle < 0 || !split_now(worst_t, on.point)) return false;
+            flips += flip_near_insertions();
+        }
+    }
+
+    // insert_at with the uses of t's edges as they are now, under no floor: insert_and_mend
+    // judges the triangles after the flips.
+    bool split_now(int32_t t, const Eigen::Vector3d& p) {
+        std::vector<char> flagged(mesh_.points.size(), 0);
+        for (int32_t v : mesh_.tris[t]) flagged[v] = 1;
+        return insert_at(t, p, mesh_.edge_uses_around(flagged), 0.0, true);
+    }
+
+    // Splits triangle t at p, or one of its edges: an edge shared with a triangle unchanged this
+    // round (or any, when `uses_current`: the uses were listed after the last change), both split
+    // in two, or a boundary edge (t split in two, p joining the boundary). Of the splits that
+    // turn no triangle over, the one whose worst triangle is best, if that is at least `floor`.
+    bool insert_at(int32_t t, const Eigen::Vector3d& p, const std::unordered_map<uint64_t, EditableMesh::Uses>& uses,
+                   double floor, bool uses_current = false) {
         struct Split {
             std::vector<std::pair<int, Tri>> replace; // triangle index, what it becomes
             std::vector<Tri> append;
@@ -150,7 +236,7 @@ private:
                 continue;
             }
             const auto quad = mesh_.quad_of(found->second);
-            if (!quad || near_[quad->t1] || near_[quad->t2]) continue;
+            if (!quad || (!uses_current && (near_[quad->t1] || near_[quad->t2]))) continue;
             const int other = quad->t1 == t ? quad->t2 : quad->t1;
             const int32_t d = quad->t1 == t ? quad->d : quad->c; // opposite the edge in the other triangle
             splits.push_back({{{t, {a, m, c}}, {other, {b, m, d}}}, {{m, b, c}, {m, a, d}}});
@@ -176,7 +262,7 @@ private:
                 chosen = &split;
             }
         }
-        if (!chosen || !(best >= params_.kappa_floor)) {
+        if (!chosen || !(best >= floor)) {
             mesh_.points.pop_back();
             return false;
         }
@@ -229,6 +315,25 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& refer
         stats.flipped += refinement.flip_near_insertions();
     }
     refinement.write_to(mesh);
+    return stats;
+}
+
+HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& reference,
+                                             const std::vector<Eigen::Vector3d>& points, double gap,
+                                             const HausdorffRefinementParams& params) {
+    check_indices(mesh, "refined mesh");
+    check_indices(reference.mesh, "input mesh");
+    if (!(gap >= 0.0) || !std::isfinite(gap) || !(params.kappa_floor >= 0.0))
+        throw InvalidInput("insert_input_points: the gap must be finite and, with the kappa floor, not negative");
+    HausdorffRefinementStats stats;
+    if (mesh.triangles.rows() == 0 || points.empty()) return stats;
+    Refinement refinement(mesh, reference.tree, params);
+    // Again for the points whose closest triangle an insertion changed, against the mesh as it
+    // is then: a point is left for another call only after an insertion, so the calls end.
+    std::vector<size_t> todo(points.size());
+    std::iota(todo.begin(), todo.end(), size_t{0});
+    while (!todo.empty()) stats.inserted += refinement.insert_points(points, gap, todo, stats.flipped);
+    if (stats.inserted > 0) refinement.write_to(mesh);
     return stats;
 }
 

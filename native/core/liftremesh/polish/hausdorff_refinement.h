@@ -18,6 +18,8 @@
 //   from the input (quality_polish.h);
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
 // the tolerance; where a strongly curved part does not, the points inserted bring it closer too.
+// The same splits and flips insert given points of the input (insert_input_points): the
+// junctions of the creases that no vertex could move onto.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"
@@ -25,6 +27,7 @@
 #include "liftremesh/spatial/reference.h"
 
 #include <limits>
+#include <vector>
 
 namespace liftremesh {
 
@@ -61,5 +64,19 @@ struct HausdorffRefinementStats {
 //! not positive (kappa_floor and max_inserted may be 0) or an index is out of range.
 HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input,
                                               const HausdorffRefinementParams& params);
+
+//! Inserts each of `points` (points of the input: the creases' junctions) that has no vertex of
+//! `mesh` within `gap`, in their order, where it is nearest to the output, splitting as above.
+//! The split is followed by flips as above and, while the worst triangle it made is under
+//! params.kappa_floor, by at most three splits of that triangle at the input's point nearest to
+//! the middle of its longest edge, each with its flips: a point a quarter of an edge from a
+//! vertex needs edges that short round it. The point stands if every triangle made is at least
+//! the floor; otherwise the mesh is left as it was. Points whose closest triangle an insertion
+//! changed are taken again against the changed mesh. The guarantees are refine_towards_input's.
+//! Throws InvalidInput for a gap that is negative or not finite, a negative floor or an index out
+//! of range.
+HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& input,
+                                             const std::vector<Eigen::Vector3d>& points, double gap,
+                                             const HausdorffRefinementParams& params);
 
 } // namespace liftremesh
