@@ -273,6 +273,31 @@ TEST(InsertInputPoints, APointOnAVertexOrUnderTheFloorChangesNothing) {
     EXPECT_EQ(m.triangles, original.triangles);
 }
 
+// A scan's creases can meet in thousands of junctions, and each point tried passes over the
+// whole mesh: 64 are tried, the farthest from a vertex first. A 10 x 10 square of cells has a
+// point in each, all but the last 0.04 from the cell's lower corner, the last at its centre.
+TEST(InsertInputPoints, TriesSixtyFourPointsFarthestFromAVertexFirst) {
+    constexpr int kCells = 10;
+    constexpr double kCell = 0.1;
+    const Mesh square = test::make_square(kCells * kCell, kCells);
+    std::vector<Eigen::Vector3d> points;
+    for (int j = 0; j < kCells; ++j)
+        for (int i = 0; i < kCells; ++i) {
+            const Eigen::Vector3d corner(i * kCell, j * kCell, 0.0);
+            const bool last = i == kCells - 1 && j == kCells - 1;
+            points.push_back(corner + Eigen::Vector3d(1.0, 1.0, 0.0) * (last ? 0.5 * kCell : 0.3 * kCell));
+        }
+    Mesh m = square;
+    const HausdorffRefinementStats stats =
+        insert_input_points(m, test::OwnedReference(square), points, 0.02 * kCell, params_for(kCell));
+    EXPECT_EQ(stats.inserted, 64);
+    EXPECT_EQ(m.points.rows(), square.points.rows() + 64); // each a split that reached the floor
+    EXPECT_EQ(test::distance_to_nearest_vertex(m, points.back()), 0.0);
+    EXPECT_GT(test::distance_to_nearest_vertex(m, points[kCells * kCells - 2]), 0.0); // the 99th: not tried
+    EXPECT_GE(test::min_kappa(m), params_for(kCell).kappa_floor);
+    EXPECT_TRUE(test::topology(m).oriented_manifold());
+}
+
 TEST(InsertInputPoints, BadArgumentsAreRejected) {
     const Mesh input = crease_input();
     Mesh m = creased();

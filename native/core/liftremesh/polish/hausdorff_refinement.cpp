@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -21,6 +22,10 @@ using Tri = EditableMesh::Tri;
 
 // The splits that may follow a point's own to lift the triangles round it to the floor.
 constexpr int kMendSplits = 3;
+// Each point tried costs passes over the whole mesh (a copy to restore, the flips' fans), and a
+// scan's creases can meet in thousands of junctions: the points farthest from a vertex are
+// tried first, this many in all.
+constexpr long kMaxPointsTried = 64;
 
 // The input's referenced vertices, then points along each of its edges at most `spacing` apart.
 std::vector<Eigen::Vector3d> edge_samples(const Mesh& input, double spacing) {
@@ -69,12 +74,18 @@ public:
     }
 
     // Inserts each of the `points` that `todo` lists and that has no vertex within `gap`
-    // (insert_input_points), in their order; returns how many, adding the flips made to
-    // `flipped`. Leaves in `todo` the points whose closest triangle an insertion before them
-    // changed, for another call.
-    long insert_points(const std::vector<Eigen::Vector3d>& points, double gap, std::vector<size_t>& todo, long& flipped) {
+    // (insert_input_points), farthest from a vertex first, while `tries` lasts; returns how
+    // many, adding the flips made to `flipped`. Leaves in `todo` the points whose closest
+    // triangle an insertion before them changed, for another call.
+    long insert_points(const std::vector<Eigen::Vector3d>& points, double gap, std::vector<size_t>& todo, long& tries,
+                       long& flipped) {
         const AabbTree tree(mesh_.to_mesh());
-        std::vector<std::pair<size_t, int32_t>> wanted; // a point, its closest triangle
+        struct Wanted {
+            double away; // from the nearest corner of its closest triangle
+            size_t point;
+            int32_t triangle; // its closest
+        };
+        std::vector<Wanted> wanted;
         std::vector<int32_t> met;
         for (const size_t i : todo) {
             met.clear();
@@ -84,16 +95,24 @@ public:
                 return std::any_of(x.begin(), x.end(), [&](int32_t v) { return (mesh_.points[v] - points[i]).norm() <= gap; });
             });
             if (on_vertex) continue;
-            if (const ClosestPoint c = tree.closest(points[i]); c.triangle >= 0) wanted.emplace_back(i, c.triangle);
+            const ClosestPoint c = tree.closest(points[i]);
+            if (c.triangle < 0) continue;
+            double away = std::numeric_limits<double>::infinity();
+            for (int32_t v : mesh_.tris[c.triangle]) away = std::min(away, (mesh_.points[v] - points[i]).norm());
+            wanted.push_back({away, i, c.triangle});
         }
+        std::sort(wanted.begin(), wanted.end(),
+                  [](const Wanted& a, const Wanted& b) { return a.away != b.away ? a.away > b.away : a.point < b.point; });
         long inserted = 0;
         std::vector<char> changed(mesh_.tris.size(), 0); // since the tree was built
         todo.clear();
-        for (const auto& [i, t] : wanted) {
+        for (const auto& [away, i, t] : wanted) {
             if (changed[t]) { // an insertion before changed the triangle: maybe not its closest now
                 todo.push_back(i);
                 continue;
             }
+            if (tries == 0) break;
+            --tries;
             near_.assign(mesh_.tris.size(), 0);
             EditableMesh before = mesh_;
             long flips = 0;
@@ -332,7 +351,8 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
     // is then: a point is left for another call only after an insertion, so the calls end.
     std::vector<size_t> todo(points.size());
     std::iota(todo.begin(), todo.end(), size_t{0});
-    while (!todo.empty()) stats.inserted += refinement.insert_points(points, gap, todo, stats.flipped);
+    long tries = kMaxPointsTried;
+    while (!todo.empty() && tries > 0) stats.inserted += refinement.insert_points(points, gap, todo, tries, stats.flipped);
     if (stats.inserted > 0) refinement.write_to(mesh);
     return stats;
 }

@@ -66,7 +66,9 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input
                                               const HausdorffRefinementParams& params);
 
 //! Inserts each of `points` (points of the input: the creases' junctions) that has no vertex of
-//! `mesh` within `gap`, in their order, where it is nearest to the output, splitting as above.
+//! `mesh` within `gap`, farthest from a vertex first (ties in their order), where it is nearest
+//! to the output, splitting as above; at most 64 of them are tried (each try passes over the
+//! whole mesh).
 //! The split is followed by flips as above and, while the worst triangle it made is under
 //! params.kappa_floor, by at most three splits of that triangle at the input's point nearest to
 //! the middle of its longest edge, each with its flips: a point a quarter of an edge from a
