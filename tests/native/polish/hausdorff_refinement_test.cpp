@@ -239,7 +239,8 @@ TEST(InsertInputPoints, AJunctionAQuarterEdgeFromAVertexGetsItsOwn) {
     EXPECT_LT(worst_of_split(m, near.triangle, junction), p.kappa_floor);
     const test::Topology before = test::topology(m);
     const HausdorffRefinementStats stats = insert_input_points(m, test::OwnedReference(input), {junction}, 0.02 * kSpacing, p);
-    EXPECT_EQ(stats.inserted, 1);
+    EXPECT_GT(stats.inserted, 1); // the junction and the splits that mend its needle
+    EXPECT_EQ(stats.inserted, m.points.rows() - original.points.rows());
     EXPECT_EQ(test::distance_to_nearest_vertex(m, junction), 0.0);
     EXPECT_GE(test::min_kappa(m), p.kappa_floor);
     const test::Topology after = test::topology(m);
@@ -263,14 +264,46 @@ TEST(InsertInputPoints, APointOnAVertexOrUnderTheFloorChangesNothing) {
     const HausdorffRefinementParams p = params_for(kSpacing);
     EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.01 * kSpacing, 0)},
                                   0.02 * kSpacing, p).inserted, 0);
+    ASSERT_EQ(m.points.rows(), original.points.rows());
+    ASSERT_EQ(m.triangles.rows(), original.triangles.rows());
     EXPECT_EQ(m.points, original.points);
     EXPECT_EQ(m.triangles, original.triangles);
     HausdorffRefinementParams strict = p;
     strict.kappa_floor = 0.99; // no triangle of a split reaches it
     EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.25 * kSpacing, 0)},
                                   0.02 * kSpacing, strict).inserted, 0);
+    ASSERT_EQ(m.points.rows(), original.points.rows());
+    ASSERT_EQ(m.triangles.rows(), original.triangles.rows());
     EXPECT_EQ(m.points, original.points);
     EXPECT_EQ(m.triangles, original.triangles);
+    // Nor a point farther from the mesh than the largest distance: a part the output lost.
+    HausdorffRefinementParams near = p;
+    near.max_distance = 0.1;
+    EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {Eigen::Vector3d(0.5, 1.0, 0.2)}, 0.0, near).inserted, 0);
+    EXPECT_EQ(m.points.rows(), original.points.rows());
+}
+
+// A try that fails is undone whole, whatever a try before it or after it did: with a point that
+// stands and one that cannot (on the floor's plane 0.05 edges from a vertex, every split and
+// mend of it under the floor), the mesh is the one the first point gives alone.
+TEST(InsertInputPoints, AFailedTryLeavesTheOthersAsTheyWere) {
+    const Mesh input = crease_input();
+    const HausdorffRefinementParams p = params_for(kSpacing);
+    const Eigen::Vector3d stands(0.0, 4 * kSpacing + 0.25 * kSpacing, 0.0); // AJunctionAQuarterEdge...'s
+    const Eigen::Vector3d fails = Eigen::Vector3d(2 * kSpacing, 2 * kSpacing, 0.0) + Eigen::Vector3d(0.05, 0.0, 0.0) * kSpacing;
+    Mesh alone = creased();
+    const long one = insert_input_points(alone, test::OwnedReference(input), {stands}, 0.02 * kSpacing, p).inserted;
+    ASSERT_GT(one, 0);
+    Mesh failing = creased();
+    ASSERT_EQ(insert_input_points(failing, test::OwnedReference(input), {fails}, 0.02 * kSpacing, p).inserted, 0);
+    for (const auto& order : {std::vector<Eigen::Vector3d>{stands, fails}, std::vector<Eigen::Vector3d>{fails, stands}}) {
+        Mesh both = creased();
+        EXPECT_EQ(insert_input_points(both, test::OwnedReference(input), order, 0.02 * kSpacing, p).inserted, one);
+        ASSERT_EQ(both.points.rows(), alone.points.rows());
+        ASSERT_EQ(both.triangles.rows(), alone.triangles.rows());
+        EXPECT_EQ(both.points, alone.points);
+        EXPECT_EQ(both.triangles, alone.triangles);
+    }
 }
 
 // A scan's creases can meet in thousands of junctions, and each point tried passes over the
@@ -308,6 +341,9 @@ TEST(InsertInputPoints, BadArgumentsAreRejected) {
     HausdorffRefinementParams negative = p;
     negative.kappa_floor = -0.1;
     EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, negative), InvalidInput);
+    HausdorffRefinementParams no_tolerance = p;
+    no_tolerance.tolerance = 0.0;
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, no_tolerance), InvalidInput);
     Mesh broken = creased();
     broken.triangles(0, 0) = 1000;
     EXPECT_THROW(insert_input_points(broken, test::OwnedReference(input), points, 0.0, p), InvalidInput);

@@ -12,6 +12,7 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace liftremesh {
@@ -73,15 +74,17 @@ public:
         return inserted;
     }
 
-    // Inserts each of the `points` that `todo` lists and that has no vertex within `gap`
-    // (insert_input_points), farthest from a vertex first, while `tries` lasts; returns how
-    // many, adding the flips made to `flipped`. Leaves in `todo` the points whose closest
-    // triangle an insertion before them changed, for another call.
+    // Inserts each of the `points` that `todo` lists and that has no vertex within `gap` nor
+    // lies farther than the largest distance from the mesh (insert_input_points), farthest
+    // from a vertex first, while `tries` lasts; returns the vertices added, adding the flips
+    // made to `flipped`. Leaves in `todo` the points that an insertion before them came near
+    // (its triangles as near as the point's closest or within the gap), for another call.
     long insert_points(const std::vector<Eigen::Vector3d>& points, double gap, std::vector<size_t>& todo, long& tries,
                        long& flipped) {
         const AabbTree tree(mesh_.to_mesh());
         struct Wanted {
-            double away; // from the nearest corner of its closest triangle
+            double away;      // from the nearest corner of its closest triangle
+            double distance;  // from that triangle
             size_t point;
             int32_t triangle; // its closest
         };
@@ -96,18 +99,31 @@ public:
             });
             if (on_vertex) continue;
             const ClosestPoint c = tree.closest(points[i]);
-            if (c.triangle < 0) continue;
+            const double distance = std::sqrt(c.squared_distance);
+            if (c.triangle < 0 || distance > params_.max_distance) continue; // a part the output lost
             double away = std::numeric_limits<double>::infinity();
             for (int32_t v : mesh_.tris[c.triangle]) away = std::min(away, (mesh_.points[v] - points[i]).norm());
-            wanted.push_back({away, i, c.triangle});
+            wanted.push_back({away, distance, i, c.triangle});
         }
         std::sort(wanted.begin(), wanted.end(),
                   [](const Wanted& a, const Wanted& b) { return a.away != b.away ? a.away > b.away : a.point < b.point; });
-        long inserted = 0;
+        const size_t vertices = mesh_.points.size();
         std::vector<char> changed(mesh_.tris.size(), 0); // since the tree was built
+        std::vector<int32_t> made;                       // the same, listed
+        // Whether an insertion before came near p: its closest triangle may be another now, or a
+        // vertex within the gap.
+        auto came_near = [&](const Eigen::Vector3d& p, int32_t t, double distance) {
+            if (changed[t]) return true;
+            const double reach2 = std::pow(std::max(distance, gap), 2);
+            return std::any_of(made.begin(), made.end(), [&](int32_t f) {
+                const Tri& x = mesh_.tris[f];
+                return (closest_point_on_triangle(p, mesh_.points[x[0]], mesh_.points[x[1]], mesh_.points[x[2]]) - p)
+                           .squaredNorm() <= reach2;
+            });
+        };
         todo.clear();
-        for (const auto& [away, i, t] : wanted) {
-            if (changed[t]) { // an insertion before changed the triangle: maybe not its closest now
+        for (const auto& [away, distance, i, t] : wanted) {
+            if (came_near(points[i], t, distance)) {
                 todo.push_back(i);
                 continue;
             }
@@ -120,13 +136,12 @@ public:
                 mesh_ = std::move(before);
                 continue;
             }
-            ++inserted;
             flipped += flips;
-            changed.resize(mesh_.tris.size(), 1);
-            for (size_t f = 0; f < near_.size(); ++f)
-                if (near_[f]) changed[f] = 1;
+            changed.resize(mesh_.tris.size(), 0);
+            for (size_t f = 0; f < near_.size(); ++f) // the triangles made and changed by this try
+                if (near_[f] && !std::exchange(changed[f], 1)) made.push_back(static_cast<int32_t>(f));
         }
-        return inserted;
+        return static_cast<long>(mesh_.points.size() - vertices);
     }
 
     // Flips edges of the triangles made this round, for distance or quality (see the header).
@@ -194,8 +209,9 @@ private:
     }
 
     // Splits triangle t at p, flips round the split, then while the worst triangle made is
-    // under the floor, at most kMendSplits times, splits it at the input's point nearest to the
-    // middle of its longest edge and flips again. A point a quarter of an edge from a vertex
+    // under the floor, at most kMendSplits times, inserts the input's point nearest to the
+    // middle of its longest edge into it (the best split of it or of an edge, as insert_at
+    // chooses) and flips again. A point a quarter of an edge from a vertex
     // splits the triangle it falls in into a needle, whose long edges a flip does not always
     // shorten: split, they give the short triangles such a point needs. Whether every triangle
     // made reaches the floor; the caller restores the mesh if not.
@@ -342,13 +358,16 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
                                              const HausdorffRefinementParams& params) {
     check_indices(mesh, "refined mesh");
     check_indices(reference.mesh, "input mesh");
-    if (!(gap >= 0.0) || !std::isfinite(gap) || !(params.kappa_floor >= 0.0))
-        throw InvalidInput("insert_input_points: the gap must be finite and, with the kappa floor, not negative");
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!(gap >= 0.0) || !std::isfinite(gap) || !(params.kappa_floor >= 0.0) || !positive(params.tolerance) ||
+        !(params.max_distance > 0.0))
+        throw InvalidInput("insert_input_points: the gap must be finite and not negative, the tolerance positive and "
+                           "finite, the largest distance positive and the kappa floor not negative");
     HausdorffRefinementStats stats;
     if (mesh.triangles.rows() == 0 || points.empty()) return stats;
     Refinement refinement(mesh, reference.tree, params);
-    // Again for the points whose closest triangle an insertion changed, against the mesh as it
-    // is then: a point is left for another call only after an insertion, so the calls end.
+    // Again for the points an insertion came near, against the mesh as it is then: a point is
+    // left for another call only after an insertion, which takes a try, so the calls end.
     std::vector<size_t> todo(points.size());
     std::iota(todo.begin(), todo.end(), size_t{0});
     long tries = kMaxPointsTried;

@@ -66,17 +66,19 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input
                                               const HausdorffRefinementParams& params);
 
 //! Inserts each of `points` (points of the input: the creases' junctions) that has no vertex of
-//! `mesh` within `gap`, farthest from a vertex first (ties in their order), where it is nearest
-//! to the output, splitting as above; at most 64 of them are tried (each try passes over the
-//! whole mesh).
-//! The split is followed by flips as above and, while the worst triangle it made is under
-//! params.kappa_floor, by at most three splits of that triangle at the input's point nearest to
-//! the middle of its longest edge, each with its flips: a point a quarter of an edge from a
+//! `mesh` within `gap` and lies no farther than params.max_distance from it, where it is nearest
+//! to the output, splitting as above. The split is followed by flips as above and, while the
+//! worst triangle it made is under params.kappa_floor, by at most three insertions of the
+//! input's point nearest to the middle of that triangle's longest edge (splitting the triangle
+//! or one of its edges, as above), each with its flips: a point a quarter of an edge from a
 //! vertex needs edges that short round it. The point stands if every triangle made is at least
-//! the floor; otherwise the mesh is left as it was. Points whose closest triangle an insertion
-//! changed are taken again against the changed mesh. The guarantees are refine_towards_input's.
-//! Throws InvalidInput for a gap that is negative or not finite, a negative floor or an index out
-//! of range.
+//! the floor; otherwise the mesh is left as it was. The points are taken in passes, farthest
+//! from a vertex first within each; one that an insertion came near (its triangles as near as
+//! the point's closest, or within `gap`) waits for the next pass, against the mesh as it is
+//! then. At most 64 points are tried in all (each try passes over the whole mesh). The
+//! guarantees are refine_towards_input's; stats.inserted counts the vertices added. Throws
+//! InvalidInput for a gap that is negative or not finite, a tolerance or largest distance that
+//! is not positive, a negative floor or an index out of range.
 HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& input,
                                              const std::vector<Eigen::Vector3d>& points, double gap,
                                              const HausdorffRefinementParams& params);
