@@ -212,6 +212,14 @@ Mesh creased() {
     return strips(rows);
 }
 
+// Whether two meshes are the same, row for row (the sizes first: Eigen compares equal sizes only).
+void expect_same_mesh(const Mesh& got, const Mesh& want) {
+    ASSERT_EQ(got.points.rows(), want.points.rows());
+    ASSERT_EQ(got.triangles.rows(), want.triangles.rows());
+    EXPECT_EQ(got.points, want.points);
+    EXPECT_EQ(got.triangles, want.triangles);
+}
+
 // The worst kappa of the three triangles a split of triangle t at p makes.
 double worst_of_split(const Mesh& m, Eigen::Index t, const Eigen::Vector3d& p) {
     double worst = 1.0;
@@ -264,23 +272,17 @@ TEST(InsertInputPoints, APointOnAVertexOrUnderTheFloorChangesNothing) {
     const HausdorffRefinementParams p = params_for(kSpacing);
     EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.01 * kSpacing, 0)},
                                   0.02 * kSpacing, p).inserted, 0);
-    ASSERT_EQ(m.points.rows(), original.points.rows());
-    ASSERT_EQ(m.triangles.rows(), original.triangles.rows());
-    EXPECT_EQ(m.points, original.points);
-    EXPECT_EQ(m.triangles, original.triangles);
+    expect_same_mesh(m, original);
     HausdorffRefinementParams strict = p;
     strict.kappa_floor = 0.99; // no triangle of a split reaches it
     EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {vertex + Eigen::Vector3d(0, 0.25 * kSpacing, 0)},
                                   0.02 * kSpacing, strict).inserted, 0);
-    ASSERT_EQ(m.points.rows(), original.points.rows());
-    ASSERT_EQ(m.triangles.rows(), original.triangles.rows());
-    EXPECT_EQ(m.points, original.points);
-    EXPECT_EQ(m.triangles, original.triangles);
+    expect_same_mesh(m, original);
     // Nor a point farther from the mesh than the largest distance: a part the output lost.
     HausdorffRefinementParams near = p;
     near.max_distance = 0.1;
     EXPECT_EQ(insert_input_points(m, test::OwnedReference(input), {Eigen::Vector3d(0.5, 1.0, 0.2)}, 0.0, near).inserted, 0);
-    EXPECT_EQ(m.points.rows(), original.points.rows());
+    expect_same_mesh(m, original);
 }
 
 // A try that fails is undone whole, whatever a try before it or after it did: with a point that
@@ -299,10 +301,7 @@ TEST(InsertInputPoints, AFailedTryLeavesTheOthersAsTheyWere) {
     for (const auto& order : {std::vector<Eigen::Vector3d>{stands, fails}, std::vector<Eigen::Vector3d>{fails, stands}}) {
         Mesh both = creased();
         EXPECT_EQ(insert_input_points(both, test::OwnedReference(input), order, 0.02 * kSpacing, p).inserted, one);
-        ASSERT_EQ(both.points.rows(), alone.points.rows());
-        ASSERT_EQ(both.triangles.rows(), alone.triangles.rows());
-        EXPECT_EQ(both.points, alone.points);
-        EXPECT_EQ(both.triangles, alone.triangles);
+        expect_same_mesh(both, alone);
     }
 }
 
