@@ -68,6 +68,25 @@ std::vector<Eigen::Vector2d> polygon_with_turns(const std::vector<double>& turns
     return out;
 }
 
+// An edge used by two triangles (as a -> b and b -> a, a < b), with the cosine of the turn
+// between their normals.
+struct TurningEdge {
+    int32_t a, b;
+    double cos_turn;
+};
+std::vector<TurningEdge> turning_edges(const Mesh& mesh) {
+    std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        for (int j = 0; j < 3; ++j) by_edge[{mesh.triangles(f, j), mesh.triangles(f, (j + 1) % 3)}] = f;
+    auto normal = [&](Eigen::Index f) { return triangle_normal(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
+    std::vector<TurningEdge> out;
+    for (const auto& [e, f] : by_edge) {
+        const auto twin = by_edge.find({e.second, e.first});
+        if (twin != by_edge.end() && e.first < e.second) out.push_back({e.first, e.second, normal(f).dot(normal(twin->second))});
+    }
+    return out;
+}
+
 // The figures of issue 35 for a prism: crease recall and the worst corner distance, in h.
 struct CreaseFigures {
     double recall = 0.0;
@@ -84,31 +103,15 @@ double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, cons
 // turns at the sides, all >= 30 for the polygons below) and every vertex a corner.
 CreaseFigures crease_figures(const Mesh& input, const Mesh& output, double h) {
     // The output's edges whose two triangles turn by 15 degrees or more.
-    std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge;
-    for (Eigen::Index f = 0; f < output.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) by_edge[{output.triangles(f, j), output.triangles(f, (j + 1) % 3)}] = f;
-    auto normal = [&](Eigen::Index f) {
-        return triangle_normal(corner(output, f, 0), corner(output, f, 1), corner(output, f, 2));
-    };
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bent;
-    for (const auto& [e, f] : by_edge) {
-        const auto twin = by_edge.find({e.second, e.first});
-        if (twin == by_edge.end() || e.first > e.second) continue;
-        if (std::acos(std::clamp(normal(f).dot(normal(twin->second)), -1.0, 1.0)) >= 15.0 * kPi / 180.0)
-            bent.emplace_back(output.points.row(e.first).transpose(), output.points.row(e.second).transpose());
-    }
+    for (const TurningEdge& e : turning_edges(output))
+        if (std::acos(std::clamp(e.cos_turn, -1.0, 1.0)) >= 15.0 * kPi / 180.0)
+            bent.emplace_back(output.points.row(e.a).transpose(), output.points.row(e.b).transpose());
     // The input's edges between two non-coplanar triangles, sampled every 0.05 h.
-    std::map<std::pair<int32_t, int32_t>, Eigen::Index> in_edge;
-    for (Eigen::Index f = 0; f < input.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) in_edge[{input.triangles(f, j), input.triangles(f, (j + 1) % 3)}] = f;
-    auto in_normal = [&](Eigen::Index f) {
-        return triangle_normal(corner(input, f, 0), corner(input, f, 1), corner(input, f, 2));
-    };
     long samples = 0, found = 0;
-    for (const auto& [e, f] : in_edge) {
-        const auto twin = in_edge.find({e.second, e.first});
-        if (e.first > e.second || in_normal(f).dot(in_normal(twin->second)) > std::cos(30.0 * kPi / 180.0)) continue;
-        const Eigen::Vector3d a = input.points.row(e.first).transpose(), b = input.points.row(e.second).transpose();
+    for (const TurningEdge& e : turning_edges(input)) {
+        if (e.cos_turn > std::cos(30.0 * kPi / 180.0)) continue;
+        const Eigen::Vector3d a = input.points.row(e.a).transpose(), b = input.points.row(e.b).transpose();
         const int n = static_cast<int>(std::ceil((b - a).norm() / (0.05 * h)));
         for (int i = 0; i <= n; ++i) {
             const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / n);
@@ -208,19 +211,12 @@ namespace {
 // The junctions of a mesh's creases as issue 35 takes them on a mesh without a B-rep: vertices
 // where three or more edges whose two triangles turn by 30 degrees or more meet.
 std::vector<Eigen::Vector3d> crease_junctions(const Mesh& mesh) {
-    std::map<std::pair<int32_t, int32_t>, Eigen::Index> by_edge;
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        for (int j = 0; j < 3; ++j) by_edge[{mesh.triangles(f, j), mesh.triangles(f, (j + 1) % 3)}] = f;
-    auto normal = [&](Eigen::Index f) { return triangle_normal(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
     std::map<int32_t, int> degree;
-    for (const auto& [e, f] : by_edge) {
-        const auto twin = by_edge.find({e.second, e.first});
-        if (twin == by_edge.end() || e.first > e.second) continue;
-        if (normal(f).dot(normal(twin->second)) <= std::cos(30.0 * kPi / 180.0)) {
-            ++degree[e.first];
-            ++degree[e.second];
+    for (const TurningEdge& e : turning_edges(mesh))
+        if (e.cos_turn <= std::cos(30.0 * kPi / 180.0)) {
+            ++degree[e.a];
+            ++degree[e.b];
         }
-    }
     std::vector<Eigen::Vector3d> out;
     for (const auto& [v, count] : degree)
         if (count >= 3) out.push_back(mesh.points.row(v).transpose());
