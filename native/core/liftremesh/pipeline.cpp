@@ -398,10 +398,16 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
                                           onto_creases.min_length);
     const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, creases_over_angle, onto_creases);
     // A junction of creases that no vertex could move onto (a quarter of an edge from another,
-    // whose vertex it took) gets a vertex of its own, with the explicit creases only.
-    if (params.feature_angle < 180.0)
-        report.vertices_inserted += insert_input_points(out, reference, creases_over_angle.junctions(),
-                                                        onto_creases.min_depth, steps.hausdorff_refinement).inserted;
+    // whose vertex it took, or the corner of a knife edge cut short) gets a vertex of its own,
+    // with the explicit creases only.
+    if (params.feature_angle < 180.0) {
+        report.vertices_inserted +=
+            insert_input_points(out, reference, creases_over_angle.junctions(steps.knife_turn_deg, false),
+                                onto_creases.min_depth, steps.hausdorff_refinement).inserted;
+        report.vertices_inserted +=
+            insert_input_points(out, reference, creases_over_angle.junctions(steps.knife_turn_deg, true),
+                                onto_creases.min_depth, steps.knife_junctions).inserted;
+    }
     clock.end();
 
     // The worst triangles raised by flips and vertex moves that keep the surface on the input;

@@ -33,6 +33,11 @@ struct StepSettings {
     // In the input's coordinates:
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;
+    //! The junctions of creases no vertex reached where a knife edge meets others (a crease
+    //! turning by more than knife_turn_deg): inserted as the refinement inserts points, under
+    //! another floor.
+    HausdorffRefinementParams knife_junctions;
+    double knife_turn_deg = 0.0;
     CreaseSnapParams crease_snap;
     //! The crease snap onto every crease over the feature angle (its min_turn_deg set from
     //! RemeshParams::feature_angle): a vertex moves wherever the crease is cut at all.

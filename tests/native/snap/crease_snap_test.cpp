@@ -112,6 +112,32 @@ TEST(AcuteCreases, JunctionsAreTheCornersWhereThreeCreasesMeet) {
     ASSERT_EQ(cube.junctions().size(), 8u);
     EXPECT_EQ(cube.junctions(), cube.corners());
     for (const Eigen::Vector3d& j : cube.junctions()) EXPECT_EQ(j.cwiseAbs(), Eigen::Vector3d::Constant(0.5));
+    EXPECT_TRUE(cube.junctions(120.0, true).empty());
+    EXPECT_EQ(cube.junctions(120.0, false), cube.junctions());
+}
+
+// A prism on the triangle (0, 0), (10, 0), (0, 4): its vertical edges turn by 90, 158.2 and
+// 111.8 degrees, and each of its six corners is a junction; the two of the 21.8-degree tip are a
+// knife edge's.
+TEST(AcuteCreases, TheJunctionsOfAKnifeEdgeAreTheSharpest) {
+    std::vector<Eigen::Vector3d> pts;
+    for (double z : {0.0, 1.0})
+        for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 0), Eigen::Vector2d(0, 4)})
+            pts.emplace_back(p.x(), p.y(), z);
+    std::vector<std::array<int32_t, 3>> tris = {{0, 2, 1}, {3, 4, 5}};
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        tris.push_back({i, j, j + 3});
+        tris.push_back({i, j + 3, i + 3});
+    }
+    const AcuteCreases creases(test::make_mesh(pts, tris), 30.0, 0.1);
+    ASSERT_EQ(creases.junctions().size(), 6u);
+    const std::vector<Eigen::Vector3d> knife = creases.junctions(120.0, true);
+    ASSERT_EQ(knife.size(), 2u);
+    EXPECT_EQ(knife[0], Eigen::Vector3d(10, 0, 0));
+    EXPECT_EQ(knife[1], Eigen::Vector3d(10, 0, 1));
+    EXPECT_EQ(creases.junctions(120.0, false).size(), 4u);
+    EXPECT_EQ(creases.junctions(100.0, true).size(), 4u); // and the 111.8-degree edge's
 }
 
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {

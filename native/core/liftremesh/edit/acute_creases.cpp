@@ -9,22 +9,37 @@
 namespace liftremesh {
 
 AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacing, double min_length) {
+    std::unordered_map<int32_t, double> sharpest; // the sharpest crease at an input vertex
     for (const auto& [a, b, left, right, turn] : crease_edges(input, min_turn_deg, min_length)) {
         ++degree_[a];
         ++degree_[b];
+        sharpest[a] = std::max(sharpest[a], turn);
+        sharpest[b] = std::max(sharpest[b], turn);
         segments_.push_back({input.points.row(a).transpose(), input.points.row(b).transpose()});
         ends_.emplace_back(a, b);
     }
+    std::vector<std::pair<Eigen::Vector3d, double>> junctions;
     for (const auto& [v, count] : degree_) {
         if (count != 2) corners_.push_back(input.points.row(v).transpose());
-        if (count >= 3) junctions_.push_back(input.points.row(v).transpose());
+        if (count >= 3) junctions.emplace_back(input.points.row(v).transpose(), sharpest[v]);
     }
     auto lexicographic = [](const Eigen::Vector3d& l, const Eigen::Vector3d& r) {
         return std::lexicographical_compare(l.data(), l.data() + 3, r.data(), r.data() + 3);
     };
     std::sort(corners_.begin(), corners_.end(), lexicographic);
-    std::sort(junctions_.begin(), junctions_.end(), lexicographic);
+    std::sort(junctions.begin(), junctions.end(), [&](const auto& l, const auto& r) { return lexicographic(l.first, r.first); });
+    for (const auto& [x, turn] : junctions) {
+        junctions_.push_back(x);
+        junction_turns_.push_back(turn);
+    }
     index_.emplace(segments_, spacing);
+}
+
+std::vector<Eigen::Vector3d> AcuteCreases::junctions(double turn_deg, bool sharper) const {
+    std::vector<Eigen::Vector3d> out;
+    for (size_t i = 0; i < junctions_.size(); ++i)
+        if ((junction_turns_[i] > turn_deg) == sharper) out.push_back(junctions_[i]);
+    return out;
 }
 
 std::optional<AcuteCreases::Nearest> AcuteCreases::nearest(const Eigen::Vector3d& p, double radius) const {

@@ -30,6 +30,9 @@ public:
     const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
     //! Of the corners, those where three or more creases meet, in the same order.
     const std::vector<Eigen::Vector3d>& junctions() const { return junctions_; }
+    //! Of the junctions, those where one of the creases turns by more than `turn_deg` or not
+    //! (`sharper` false), in the same order: 120 degrees parts the corners of knife edges.
+    std::vector<Eigen::Vector3d> junctions(double turn_deg, bool sharper) const;
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
 
@@ -51,6 +54,7 @@ private:
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
     std::vector<Eigen::Vector3d> junctions_;
+    std::vector<double> junction_turns_; // each junction's sharpest crease, in degrees
     std::optional<SegmentIndex> index_; // over segments_, sampled every spacing
     mutable std::vector<int32_t> found_;
 };
