@@ -76,9 +76,39 @@ def crease_angles():
     return _prism([30, 60, 45, 75, 150], [40, 10, 10], 15)
 
 
+def primitives():
+    """Fifteen of the Part workbench's primitives in one compound, 25 mm apart, as a file of
+    several solids is: a box, a cylinder and a 120-degree sector of one, a cone, a pointed cone
+    and a 90-degree sector of a cone, a sphere, a 90-degree and a 30-degree wedge of a sphere
+    (its poles acute corners), a torus, a wedge, an ellipsoid, a hexagonal prism, a tube and a
+    plate 1 mm thick. Euler characteristic 26: 13 spheres and two tori."""
+    hexagon = Part.makePolygon([V(5 * math.cos(i * math.pi / 3), 5 * math.sin(i * math.pi / 3), 0) for i in range(7)])
+    solids = [
+        Part.makeBox(10, 8, 6),
+        Part.makeCylinder(4, 10),
+        Part.makeCone(5, 2, 8),
+        Part.makeCone(5, 0, 8),
+        Part.makeSphere(5),
+        Part.makeSphere(5, V(0, 0, 0), V(0, 0, 1), -90, 90, 90),
+        Part.makeTorus(6, 2),
+        Part.makeCylinder(4, 10, V(0, 0, 0), V(0, 0, 1), 120),
+        Part.makeSphere(6, V(0, 0, 0), V(0, 0, 1), -90, 90, 30),
+        Part.makeWedge(0, 0, 0, 2, 2, 10, 10, 10, 8, 8),
+        Part.makeSphere(1).transformGeometry(FreeCAD.Matrix(6, 0, 0, 0, 0, 4, 0, 0, 0, 0, 3, 0)),
+        Part.Face(hexagon).extrude(V(0, 0, 8)),
+        Part.makeCone(5, 3, 8, V(0, 0, 0), V(0, 0, 1), 90),
+        Part.makeCylinder(5, 8).cut(Part.makeCylinder(3.5, 8)),
+        Part.makeBox(12, 12, 1),
+    ]
+    for i, solid in enumerate(solids):
+        solid.translate(V(25 * (i % 5), 25 * (i // 5), 0))
+    return Part.makeCompound(solids)
+
+
 PARTS = {
     "thread": thread,
     "fillets_chamfers": fillets_and_chamfers,
     "revolved": revolved_profile,
     "crease_angles": crease_angles,
+    "primitives": primitives,
 }

@@ -35,7 +35,7 @@ def remeshed(name, **settings):
 
 class CreaseTest(unittest.TestCase):
     def check_part(self, name, recall=cc.RECALL_TARGET, corner_h=cc.CORNER_TARGET_H, spurious=cc.SPURIOUS_TARGET,
-                   hausdorff=0.005, **settings):
+                   hausdorff=0.005, chi=2, **settings):
         figures, report, points, triangles = remeshed(name, **settings)
         self.assertGreater(figures.samples, 0)
         self.assertGreaterEqual(figures.recall, recall)
@@ -46,7 +46,7 @@ class CreaseTest(unittest.TestCase):
         self.assertLessEqual(report["hausdorff_relative"], hausdorff)
         self.assertEqual(report["output"]["folded_edges"], 0)  # which a tetrahedral mesher refuses
         self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles))
-        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2)
+        self.assertEqual(mesh_checks.euler_characteristic(points, triangles), chi)
 
     def test_fillets_meeting_chamfers(self):
         self.check_part("fillets_chamfers")
@@ -105,6 +105,11 @@ class CreaseTest(unittest.TestCase):
         nearest vertex, Hausdorff 1.12%, spurious 0.018, recall 0.798): corners within 0.2 h
         (0.15), spurious creases under 0.02, recall 0.8."""
         self.check_part("thread", recall=0.8, corner_h=0.2, hausdorff=0.006, hold_creases=False)
+
+    def test_fifteen_primitives_in_one_file(self):
+        """Each solid remeshed on its own, its share of the vertices by area: every one keeps its
+        topology, and the whole meets the bar (the sphere wedges' poles too)."""
+        self.check_part("primitives", chi=26)
 
     def test_feature_angle_180_leaves_the_corners_to_the_feature_term(self):
         """The explicit creases off: the corners of the prism are no longer all on vertices, as
