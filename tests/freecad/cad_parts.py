@@ -76,6 +76,23 @@ def crease_angles():
     return _prism([30, 60, 45, 75, 150], [40, 10, 10], 15)
 
 
+def filleted_boolean():
+    """A 40 x 30 x 10 mm block fused with a boss of 8 mm radius, the circle where they meet filleted
+    (2 mm), and an 8 mm hole through both: a boolean's edges rounded where they meet."""
+    body = Part.makeBox(40, 30, 10).fuse(Part.makeCylinder(8, 15, V(20, 15, 5))).removeSplitter()
+    rim = [e for e in body.Edges if abs(e.BoundBox.ZMin - 10) < 1e-6 and abs(e.BoundBox.ZMax - 10) < 1e-6 and
+           isinstance(e.Curve, Part.Circle)]
+    return body.makeFillet(2.0, rim).cut(Part.makeCylinder(4, 30, V(20, 15, -5))).removeSplitter()
+
+
+def hollowed():
+    """A 40 x 30 x 20 mm box with its vertical edges filleted (5 mm), shelled to 1.5 mm walls with
+    its top open: walls about as thick as the edge length at 6000 vertices (1.18 mm)."""
+    box = Part.makeBox(40, 30, 20)
+    box = box.makeFillet(5.0, [e for e in box.Edges if abs(e.tangentAt(e.FirstParameter).z) > 0.9])
+    return box.makeThickness([f for f in box.Faces if abs(f.CenterOfMass.z - 20) < 1e-6], -1.5, 1e-3)
+
+
 def primitives():
     """Fifteen of the Part workbench's primitives in one compound, 25 mm apart, as a file of
     several solids is: a box, a cylinder and a 120-degree sector of one, a cone, a pointed cone
@@ -110,5 +127,7 @@ PARTS = {
     "fillets_chamfers": fillets_and_chamfers,
     "revolved": revolved_profile,
     "crease_angles": crease_angles,
+    "filleted_boolean": filleted_boolean,
+    "hollowed": hollowed,
     "primitives": primitives,
 }

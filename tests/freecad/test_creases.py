@@ -106,6 +106,15 @@ class CreaseTest(unittest.TestCase):
         (0.15), spurious creases under 0.02, recall 0.8."""
         self.check_part("thread", recall=0.8, corner_h=0.2, hausdorff=0.006, hold_creases=False)
 
+    def test_filleted_boolean(self):
+        """Genus 1: the hole through block and boss."""
+        self.check_part("filleted_boolean", chi=0)
+
+    def test_hollowed_solid(self):
+        """Its walls, 1.5 mm, are about an edge length thick (1.18 mm): kept apart, the rims of
+        the open top creases."""
+        self.check_part("hollowed")
+
     def test_fifteen_primitives_in_one_file(self):
         """Each solid remeshed on its own, its share of the vertices by area: every one keeps its
         topology, and the whole meets the bar (the sphere wedges' poles too)."""
