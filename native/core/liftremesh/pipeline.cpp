@@ -401,12 +401,11 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     // whose vertex it took, or the corner of a knife edge cut short) gets a vertex of its own,
     // with the explicit creases only.
     if (params.feature_angle < 180.0) {
-        report.vertices_inserted +=
-            insert_input_points(out, reference, creases_over_angle.junctions(steps.knife_turn_deg, false),
-                                onto_creases.min_depth, steps.hausdorff_refinement).inserted;
-        report.vertices_inserted +=
-            insert_input_points(out, reference, creases_over_angle.junctions(steps.knife_turn_deg, true),
-                                onto_creases.min_depth, steps.knife_junctions).inserted;
+        std::vector<double> floors;
+        for (const double turn : creases_over_angle.junction_turns())
+            floors.push_back(turn > steps.knife_turn_deg ? steps.knife_junction_floor : steps.hausdorff_refinement.kappa_floor);
+        report.vertices_inserted += insert_input_points(out, reference, creases_over_angle.junctions(),
+                                                        onto_creases.min_depth, steps.hausdorff_refinement, floors).inserted;
     }
     clock.end();
 

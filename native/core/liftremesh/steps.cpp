@@ -29,8 +29,7 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     // short there are poorer than elsewhere: there a corner left up to half an edge off is the
     // larger defect, and the project's floor holds (issue 35 asks kappa >= 0.3 and every corner
     // within 0.1 h).
-    s.knife_junctions = s.hausdorff_refinement;
-    s.knife_junctions.kappa_floor = kKappaFloor;
+    s.knife_junction_floor = kKappaFloor;
     s.knife_turn_deg = 120.0;
 
     // The sites Eq. 10 leaves off a 30-degree edge lie 0.1-0.2 h from it, those of the faces'

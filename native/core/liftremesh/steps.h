@@ -33,10 +33,10 @@ struct StepSettings {
     // In the input's coordinates:
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;
-    //! The junctions of creases no vertex reached where a knife edge meets others (a crease
-    //! turning by more than knife_turn_deg): inserted as the refinement inserts points, under
-    //! another floor.
-    HausdorffRefinementParams knife_junctions;
+    //! The floor under which a junction of creases no vertex reached is inserted where a knife
+    //! edge (a crease turning by more than knife_turn_deg) meets others, in place of the
+    //! refinement's.
+    double knife_junction_floor = 0.0;
     double knife_turn_deg = 0.0;
     CreaseSnapParams crease_snap;
     //! The crease snap onto every crease over the feature angle (its min_turn_deg set from

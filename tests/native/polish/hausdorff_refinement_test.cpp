@@ -305,6 +305,28 @@ TEST(InsertInputPoints, AFailedTryLeavesTheOthersAsTheyWere) {
     }
 }
 
+// A point's own floor holds for its try in place of the refinement's: the point
+// AFailedTryLeavesTheOthersAsTheyWere cannot insert under 0.45 stands under a lower one, and the
+// other points keep theirs.
+TEST(InsertInputPoints, APointsOwnFloorHoldsForItsTry) {
+    const Mesh input = crease_input();
+    const HausdorffRefinementParams p = params_for(kSpacing);
+    const Eigen::Vector3d stands(0.0, 4 * kSpacing + 0.25 * kSpacing, 0.0);
+    const Eigen::Vector3d fails = Eigen::Vector3d(2 * kSpacing, 2 * kSpacing, 0.0) + Eigen::Vector3d(0.05, 0.0, 0.0) * kSpacing;
+    Mesh same = creased();
+    EXPECT_EQ(insert_input_points(same, test::OwnedReference(input), {fails}, 0.02 * kSpacing, p, {p.kappa_floor}).inserted, 0);
+    expect_same_mesh(same, creased());
+    Mesh m = creased();
+    const double low = 0.05;
+    EXPECT_GT(insert_input_points(m, test::OwnedReference(input), {stands, fails}, 0.02 * kSpacing, p, {p.kappa_floor, low})
+                  .inserted,
+              1);
+    EXPECT_EQ(test::distance_to_nearest_vertex(m, fails), 0.0);
+    EXPECT_EQ(test::distance_to_nearest_vertex(m, stands), 0.0);
+    EXPECT_GE(test::min_kappa(m), low);
+    EXPECT_TRUE(test::topology(m).oriented_manifold());
+}
+
 // A scan's creases can meet in thousands of junctions, and each point tried passes over the
 // whole mesh: 64 are tried, the farthest from a vertex first. A 10 x 10 square of cells has a
 // point in each, all but the last 0.04 from the cell's lower corner, the last at its centre.
@@ -343,6 +365,8 @@ TEST(InsertInputPoints, BadArgumentsAreRejected) {
     HausdorffRefinementParams no_tolerance = p;
     no_tolerance.tolerance = 0.0;
     EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, no_tolerance), InvalidInput);
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, p, {0.3, 0.3}), InvalidInput);
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, p, {-0.1}), InvalidInput);
     Mesh broken = creased();
     broken.triangles(0, 0) = 1000;
     EXPECT_THROW(insert_input_points(broken, test::OwnedReference(input), points, 0.0, p), InvalidInput);

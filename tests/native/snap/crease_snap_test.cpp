@@ -112,14 +112,14 @@ TEST(AcuteCreases, JunctionsAreTheCornersWhereThreeCreasesMeet) {
     ASSERT_EQ(cube.junctions().size(), 8u);
     EXPECT_EQ(cube.junctions(), cube.corners());
     for (const Eigen::Vector3d& j : cube.junctions()) EXPECT_EQ(j.cwiseAbs(), Eigen::Vector3d::Constant(0.5));
-    EXPECT_TRUE(cube.junctions(120.0, true).empty());
-    EXPECT_EQ(cube.junctions(120.0, false), cube.junctions());
+    ASSERT_EQ(cube.junction_turns().size(), 8u);
+    for (const double turn : cube.junction_turns()) EXPECT_NEAR(turn, 90.0, 1e-9);
 }
 
 // A prism on the triangle (0, 0), (10, 0), (0, 4): its vertical edges turn by 90, 158.2 and
-// 111.8 degrees, and each of its six corners is a junction; the two of the 21.8-degree tip are a
-// knife edge's.
-TEST(AcuteCreases, TheJunctionsOfAKnifeEdgeAreTheSharpest) {
+// 111.8 degrees, its caps' edges by 90, and each of its six corners is a junction, whose
+// sharpest crease is its vertical edge: the two of the 21.8-degree tip are a knife edge's.
+TEST(AcuteCreases, EachJunctionHasItsSharpestCreasesTurn) {
     std::vector<Eigen::Vector3d> pts;
     for (double z : {0.0, 1.0})
         for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 0), Eigen::Vector2d(0, 4)})
@@ -132,12 +132,11 @@ TEST(AcuteCreases, TheJunctionsOfAKnifeEdgeAreTheSharpest) {
     }
     const AcuteCreases creases(test::make_mesh(pts, tris), 30.0, 0.1);
     ASSERT_EQ(creases.junctions().size(), 6u);
-    const std::vector<Eigen::Vector3d> knife = creases.junctions(120.0, true);
-    ASSERT_EQ(knife.size(), 2u);
-    EXPECT_EQ(knife[0], Eigen::Vector3d(10, 0, 0));
-    EXPECT_EQ(knife[1], Eigen::Vector3d(10, 0, 1));
-    EXPECT_EQ(creases.junctions(120.0, false).size(), 4u);
-    EXPECT_EQ(creases.junctions(100.0, true).size(), 4u); // and the 111.8-degree edge's
+    ASSERT_EQ(creases.junction_turns().size(), 6u);
+    for (size_t i = 0; i < 6; ++i) {
+        const double expected = creases.junctions()[i].x() == 10.0 ? 158.2 : creases.junctions()[i].y() == 4.0 ? 111.8 : 90.0;
+        EXPECT_NEAR(creases.junction_turns()[i], expected, 0.05) << i;
+    }
 }
 
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {

@@ -35,13 +35,6 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
     index_.emplace(segments_, spacing);
 }
 
-std::vector<Eigen::Vector3d> AcuteCreases::junctions(double turn_deg, bool sharper) const {
-    std::vector<Eigen::Vector3d> out;
-    for (size_t i = 0; i < junctions_.size(); ++i)
-        if ((junction_turns_[i] > turn_deg) == sharper) out.push_back(junctions_[i]);
-    return out;
-}
-
 std::optional<AcuteCreases::Nearest> AcuteCreases::nearest(const Eigen::Vector3d& p, double radius) const {
     index_->near(p, radius, found_);
     std::optional<Nearest> best;

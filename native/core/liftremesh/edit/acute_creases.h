@@ -30,9 +30,8 @@ public:
     const std::vector<Eigen::Vector3d>& corners() const { return corners_; }
     //! Of the corners, those where three or more creases meet, in the same order.
     const std::vector<Eigen::Vector3d>& junctions() const { return junctions_; }
-    //! Of the junctions, those where one of the creases turns by more than `turn_deg` or not
-    //! (`sharper` false), in the same order: 120 degrees parts the corners of knife edges.
-    std::vector<Eigen::Vector3d> junctions(double turn_deg, bool sharper) const;
+    //! Per junction, the turn of its sharpest crease, in degrees: over 120 at a knife edge's.
+    const std::vector<double>& junction_turns() const { return junction_turns_; }
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <optional>
 #include <string>
 #include <utility>
@@ -54,7 +55,7 @@ struct Witness {
 class Refinement {
 public:
     Refinement(const Mesh& mesh, const AabbTree& input, const HausdorffRefinementParams& params)
-        : mesh_(mesh), input_(input), params_(params) {}
+        : mesh_(mesh), input_(input), params_(params), floor_(params.kappa_floor) {}
 
     // Inserts the witnesses of the current mesh; returns how many, marking the triangles made.
     long insert(const std::vector<Eigen::Vector3d>& samples, long allowed) {
@@ -79,8 +80,8 @@ public:
     // from a vertex first, while `tries` lasts; returns the vertices added, adding the flips
     // made to `flipped`. Leaves in `todo` the points that an insertion before them came near
     // (its triangles as near as the point's closest or within the gap), for another call.
-    long insert_points(const std::vector<Eigen::Vector3d>& points, double gap, std::vector<size_t>& todo, long& tries,
-                       long& flipped) {
+    long insert_points(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& floors, double gap,
+                       std::vector<size_t>& todo, long& tries, long& flipped) {
         const AabbTree tree(mesh_.to_mesh());
         struct Wanted {
             double away;      // from the nearest corner of its closest triangle
@@ -132,7 +133,10 @@ public:
             near_.assign(mesh_.tris.size(), 0);
             EditableMesh before = mesh_;
             long flips = 0;
-            if (!insert_and_mend(t, points[i], flips)) {
+            floor_ = floors.empty() ? params_.kappa_floor : floors[i];
+            const bool stands = insert_and_mend(t, points[i], flips);
+            floor_ = params_.kappa_floor;
+            if (!stands) {
                 mesh_ = std::move(before);
                 continue;
             }
@@ -227,7 +231,7 @@ private:
                         worst = kappa;
                         worst_t = static_cast<int32_t>(f);
                     }
-            if (worst >= params_.kappa_floor) return true;
+            if (worst >= floor_) return true;
             if (k == kMendSplits) return false;
             const Tri w = mesh_.tris[worst_t];
             auto length2 = [&](int j) { return (mesh_.points[w[j]] - mesh_.points[w[(j + 1) % 3]]).squaredNorm(); };
@@ -315,13 +319,14 @@ private:
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         if (before > params_.tolerance && after < 0.5 * before)
-            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, params_.kappa_floor);
+            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor_);
         return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
     }
 
     EditableMesh mesh_;
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
+    double floor_;                // params_.kappa_floor, or the floor of the point insert_points tries
     std::vector<char> near_;      // per triangle: made or changed this round
     CompressedRows fans_;         // per point, its triangles at the start of the flip pass
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
@@ -355,7 +360,7 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& refer
 
 HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& reference,
                                              const std::vector<Eigen::Vector3d>& points, double gap,
-                                             const HausdorffRefinementParams& params) {
+                                             const HausdorffRefinementParams& params, const std::vector<double>& floors) {
     check_indices(mesh, "refined mesh");
     check_indices(reference.mesh, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -363,6 +368,11 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
         !(params.max_distance > 0.0))
         throw InvalidInput("insert_input_points: the gap must be finite and not negative, the tolerance positive and "
                            "finite, the largest distance positive and the kappa floor not negative");
+    if (!floors.empty() && floors.size() != points.size())
+        throw InvalidInput("insert_input_points: " + std::to_string(floors.size()) + " floors for " +
+                           std::to_string(points.size()) + " points");
+    if (std::any_of(floors.begin(), floors.end(), [](double f) { return !(f >= 0.0); }))
+        throw InvalidInput("insert_input_points: a point's kappa floor is negative or not a number");
     HausdorffRefinementStats stats;
     if (mesh.triangles.rows() == 0 || points.empty()) return stats;
     Refinement refinement(mesh, reference.tree, params);
@@ -371,7 +381,7 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
     std::vector<size_t> todo(points.size());
     std::iota(todo.begin(), todo.end(), size_t{0});
     long tries = kMaxPointsTried;
-    while (!todo.empty() && tries > 0) stats.inserted += refinement.insert_points(points, gap, todo, tries, stats.flipped);
+    while (!todo.empty() && tries > 0) stats.inserted += refinement.insert_points(points, floors, gap, todo, tries, stats.flipped);
     if (stats.inserted > 0) refinement.write_to(mesh);
     return stats;
 }

@@ -75,12 +75,15 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input
 //! the floor; otherwise the mesh is left as it was. The points are taken in passes, farthest
 //! from a vertex first within each; one that an insertion came near (its triangles as near as
 //! the point's closest, or within `gap`) waits for the next pass, against the mesh as it is
-//! then. At most 64 points are tried in all (each try passes over the whole mesh). The
-//! guarantees are refine_towards_input's; stats.inserted counts the vertices added. Throws
-//! InvalidInput for a gap that is negative or not finite, a tolerance or largest distance that
-//! is not positive, a negative floor or an index out of range.
+//! then. At most 64 points are tried in all (each try passes over the whole mesh). `floors`, if
+//! not empty, gives each point the floor its try keeps instead of params.kappa_floor (for the
+//! flips too). The guarantees are refine_towards_input's; stats.inserted counts the vertices
+//! added. Throws InvalidInput for a gap that is negative or not finite, a tolerance or largest
+//! distance that is not positive, a negative floor, floors not one a point, or an index out of
+//! range.
 HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& input,
                                              const std::vector<Eigen::Vector3d>& points, double gap,
-                                             const HausdorffRefinementParams& params);
+                                             const HausdorffRefinementParams& params,
+                                             const std::vector<double>& floors = {});
 
 } // namespace liftremesh
