@@ -33,9 +33,9 @@ struct StepSettings {
     // In the input's coordinates:
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;
-    //! The floor under which a junction of creases no vertex reached is inserted where a knife
-    //! edge (a crease turning by more than knife_turn_deg) meets others, in place of the
-    //! refinement's.
+    //! The kappa floor that the try of a crease junction no vertex reached keeps, in place of
+    //! the refinement's, where a knife edge meets other creases: one of them turning by more
+    //! than knife_turn_deg (degrees).
     double knife_junction_floor = 0.0;
     double knife_turn_deg = 0.0;
     CreaseSnapParams crease_snap;

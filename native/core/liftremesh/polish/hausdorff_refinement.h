@@ -79,8 +79,8 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input
 //! not empty, gives each point the floor its try keeps instead of params.kappa_floor (for the
 //! flips too). The guarantees are refine_towards_input's; stats.inserted counts the vertices
 //! added. Throws InvalidInput for a gap that is negative or not finite, a tolerance or largest
-//! distance that is not positive, a negative floor, floors not one a point, or an index out of
-//! range.
+//! distance that is not positive, a negative floor, `floors` of another length than `points`,
+//! or an index out of range.
 HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& input,
                                              const std::vector<Eigen::Vector3d>& points, double gap,
                                              const HausdorffRefinementParams& params,
