@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Issue 35's crease check on the FreeCAD-built parts (tests/freecad/cad_parts.py, measured against
 their B-rep) and on the shared CAD meshes (measured against their own tessellation's creases at 30
-degrees or more: they come without a B-rep). Each part is tessellated as a user's STL export is
+degrees or more but its slivers' edges: they come without a B-rep). Each part is tessellated as a user's STL export is
 (0.1 mm, 30 degrees), remeshed by the command-line tool with the defaults at --vertices, and
 measured by tests/freecad/crease_check.py; prints a markdown table.
 
