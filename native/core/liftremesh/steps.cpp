@@ -39,14 +39,18 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.crease_snap.corner_radius = spacing * scale;
     s.crease_snap.tolerance = tolerance;
     s.crease_snap.kappa_floor = s.hausdorff_refinement.kappa_floor;
+    // Beside a knife edge the faces' acute angle leaves poorer triangles, and a knife edge cut
+    // off is the larger defect: there the project's floor, as for its junctions above.
+    s.crease_snap.knife_kappa_floor = s.knife_junction_floor;
+    s.crease_snap.knife_turn_deg = s.knife_turn_deg;
     // Every crease over the feature angle (issue 35): its row of vertices within 0.1 h of it,
     // so a vertex whose triangles cut it 0.02 h deep or more moves onto it, from up to h / 2
     // away (the rows of the faces next to a crease that is no sharper than 30 degrees lie nearer
     // than on a knife edge). A crease shorter than 2 h in all is no feature the output can
     // follow (a scan's noise, a facet's slip). The moves and their flips keep the surface within
-    // 0.1 h of the input, not the repair's 0.15 h, and kappa >= 0.45 as the repair does: the
-    // creases are followed without the Hausdorff distance or kappa min of the CAD meshes falling
-    // back.
+    // 0.1 h of the input, not the repair's 0.15 h, and kappa >= 0.45 as the repair does (0.3 by
+    // a knife edge): the creases are followed without the Hausdorff distance or kappa min of the
+    // CAD meshes falling back.
     s.feature_snap = s.crease_snap;
     s.feature_snap.min_depth = 0.02 * spacing * scale;
     s.feature_snap.radius = 0.5 * spacing * scale;

@@ -133,6 +133,11 @@ TEST(AcuteCreases, EachJunctionHasItsSharpestCreasesTurn) {
     const AcuteCreases creases(test::make_mesh(pts, tris), 30.0, 0.1);
     ASSERT_EQ(creases.junctions().size(), 6u);
     ASSERT_EQ(creases.junction_turns().size(), 6u);
+    for (long s = 0; s < creases.size(); ++s) { // the caps' edges turn by 90 degrees
+        const auto [a, b] = creases.ends(s);
+        const bool vertical = a % 3 == b % 3;
+        if (!vertical) EXPECT_NEAR(creases.turn(s), 90.0, 1e-9) << s;
+    }
     for (size_t i = 0; i < 6; ++i) {
         const double expected = creases.junctions()[i].x() == 10.0 ? 158.2 : creases.junctions()[i].y() == 4.0 ? 111.8 : 90.0;
         EXPECT_NEAR(creases.junction_turns()[i], expected, 0.05) << i;
@@ -176,6 +181,35 @@ TEST(CreaseSnap, RejectsBadParameters) {
     p = params_for(0.1);
     p.min_turn_deg = 200.0;
     EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
+    p = params_for(0.1);
+    p.knife_kappa_floor = -0.1;
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
+    p = params_for(0.1);
+    p.knife_turn_deg = 181.0;
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
+}
+
+// A move onto a crease edge turning by more than knife_turn_deg keeps knife_kappa_floor, the
+// others kappa_floor: on a 30-degree wedge (its edge turns by 150 degrees) whose row lies 0.3 h
+// off the edge, the row moves under a knife floor of 0.45 whatever kappa_floor asks, and not
+// under one of 0.99; with knife_turn_deg at 160 the edge is no knife edge and kappa_floor holds.
+TEST(CreaseSnap, MovesOntoAKnifeEdgeKeepTheKnifeFloor) {
+    const double h = 0.1;
+    const Mesh input = wedge(30.0, 1.0, 1.0);
+    auto moved = [&](double floor, double knife_floor, double knife_turn) {
+        Mesh mesh = wedge(30.0, 1.0, 1.0, h, 0.3 * h);
+        CreaseSnapParams p = params_for(h);
+        p.corner_radius = 0.0; // the row only
+        p.kappa_floor = floor;
+        p.knife_kappa_floor = knife_floor;
+        p.knife_turn_deg = knife_turn;
+        return snap_to_acute_creases(mesh, test::OwnedReference(input), p).moved;
+    };
+    EXPECT_GT(moved(0.99, 0.45, 120.0), 0);
+    EXPECT_EQ(moved(0.99, 0.45, 120.0), moved(0.45, 0.45, 120.0));
+    EXPECT_EQ(moved(0.45, 0.99, 120.0), 0);
+    EXPECT_EQ(moved(0.99, 0.45, 160.0), 0);
+    EXPECT_EQ(moved(0.45, 0.99, 160.0), moved(0.45, 0.45, 120.0));
 }
 
 // The feature angle's creases (steps.h, feature_snap): a 32-degree crease (faces at 148 degrees)

@@ -17,6 +17,7 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
         sharpest[b] = std::max(sharpest[b], turn);
         segments_.push_back({input.points.row(a).transpose(), input.points.row(b).transpose()});
         ends_.emplace_back(a, b);
+        turns_.push_back(turn);
     }
     std::vector<std::pair<Eigen::Vector3d, double>> junctions;
     for (const auto& [v, count] : degree_) {

@@ -34,6 +34,8 @@ public:
     const std::vector<double>& junction_turns() const { return junction_turns_; }
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
+    //! How far crease edge `s`'s two triangles turn, in degrees.
+    double turn(long s) const { return turns_[s]; }
 
     //! A crease edge's point nearest to a point: the edge, its place t in [0, 1] from a to b,
     //! and the point.
@@ -50,6 +52,7 @@ public:
 private:
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments_;
     std::vector<std::pair<int32_t, int32_t>> ends_; // each segment's input vertices
+    std::vector<double> turns_;                     // each segment's turn, in degrees
     std::unordered_map<int32_t, int> degree_; // crease edges at an input vertex
     std::vector<Eigen::Vector3d> corners_;
     std::vector<Eigen::Vector3d> junctions_;

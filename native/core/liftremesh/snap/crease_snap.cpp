@@ -32,8 +32,9 @@ public:
 
     // Moves v to x with the flips that follow, or leaves everything as it was (see the header),
     // where the fan of v lies farther than `depth` from x.
-    bool snap(int32_t v, const Eigen::Vector3d& x, double depth, long& flips) {
+    bool snap(int32_t v, const Eigen::Vector3d& x, double depth, long& flips, double floor) {
         if (fans_[v].empty()) return false; // not a vertex of the surface
+        floor_ = floor;
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
         double cut2 = std::numeric_limits<double>::infinity();
@@ -65,7 +66,7 @@ public:
         const Measure after = measure(touched());
         for (int t : touched()) region.push_back(t);
         const bool ok = after.off <= before.off && folded_edges(region) <= folded_before &&
-                        after.worst_kappa >= params_.kappa_floor &&
+                        after.worst_kappa >= floor_ &&
                         after.farthest <= std::max(params_.tolerance, before.farthest);
         if (ok) {
             flips += made;
@@ -161,7 +162,7 @@ private:
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
-                              std::min(params_.kappa_floor, before.worst_kappa)) &&
+                              std::min(floor_, before.worst_kappa)) &&
             !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
             return 0;
         const auto [n1, n2] = EditableMesh::flipped(*q);
@@ -176,6 +177,7 @@ private:
     EditableMesh mesh_;
     const AabbTree& input_;
     const CreaseSnapParams& params_;
+    double floor_ = 0.0; // the move's floor (snap), for its flips too
     std::vector<std::vector<int>> fans_;
     const double cos_off_;
     std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
@@ -189,9 +191,11 @@ void check_snap(const Mesh& mesh, const Mesh& input, const CreaseSnapParams& par
     if (!positive(params.radius) || !positive(params.tolerance) || !(params.corner_radius >= 0.0) ||
         !(std::isnan(params.min_depth) || params.min_depth >= 0.0) ||
         !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0) ||
+        !(params.knife_kappa_floor >= 0.0) || !(params.knife_turn_deg >= 0.0) || !(params.knife_turn_deg <= 180.0) ||
         !(params.min_length >= 0.0))
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
-                           "radius, depth and length not negative, the turn between 0 and 180 degrees, the kappa floor not negative");
+                           "radius, depth and length not negative, the turns between 0 and 180 degrees, the kappa floors "
+                           "not negative");
 }
 
 } // namespace
@@ -233,7 +237,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
         }
         for (size_t k = 0; k < candidates.size() && k < kCornerCandidates; ++k) {
             const int32_t v = candidates[k].second;
-            if (!moved[v] && snapper.snap(v, c, corner_depth, stats.flipped)) {
+            if (!moved[v] && snapper.snap(v, c, corner_depth, stats.flipped, params.kappa_floor)) {
                 moved[v] = 1;
                 ++stats.moved;
                 break;
@@ -241,19 +245,21 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
         }
     }
     // Then the vertices near a crease, nearest first (then by index: deterministic).
-    std::vector<std::tuple<double, int32_t, Eigen::Vector3d>> near;
+    std::vector<std::tuple<double, int32_t, Eigen::Vector3d, long>> near; // distance, vertex, target, crease edge
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
         const Eigen::Vector3d p = mesh.points.row(v).transpose();
-        if (const auto x = creases.closest(p, params.radius); x && (*x - p).squaredNorm() > 0.0)
-            near.emplace_back((*x - p).norm(), static_cast<int32_t>(v), *x);
+        if (const auto x = creases.nearest(p, params.radius); x && (x->point - p).squaredNorm() > 0.0)
+            near.emplace_back((x->point - p).norm(), static_cast<int32_t>(v), x->point, x->segment);
     }
     std::sort(near.begin(), near.end(),
               [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
-    for (const auto& [distance, v, x] : near)
-        if (!moved[v] && snapper.snap(v, x, depth, stats.flipped)) {
+    for (const auto& [distance, v, x, segment] : near) {
+        const double floor = creases.turn(segment) > params.knife_turn_deg ? params.knife_kappa_floor : params.kappa_floor;
+        if (!moved[v] && snapper.snap(v, x, depth, stats.flipped, floor)) {
             moved[v] = 1;
             ++stats.moved;
         }
+    }
     if (stats.moved > 0) snapper.mesh().write_to(mesh);
     return stats;
 }

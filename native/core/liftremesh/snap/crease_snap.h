@@ -23,7 +23,8 @@
 // together, and only if
 // - no more of the triangles they change turn from the input's normal nearest to their
 //   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
-// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor;
+// - the worst kappa (Eq. 26) of those triangles is at least kappa_floor (knife_kappa_floor for
+//   a move onto a knife edge);
 // - none of them ends farther from the input than both `tolerance` and the farthest of them
 //   before.
 // Otherwise the mesh is left as it was. Where the output follows the creases within the
@@ -61,6 +62,12 @@ struct CreaseSnapParams {
     double min_length = 0.0;
     //! See above; the Hausdorff refinement's floor.
     double kappa_floor = kKappaFloorOnInput;
+    //! The floor of a move onto a crease edge turning by more than knife_turn_deg (a knife
+    //! edge), in place of kappa_floor: the faces' acute angle leaves the triangles beside such
+    //! an edge poorer than elsewhere.
+    double knife_kappa_floor = kKappaFloorOnInput;
+    //! See knife_kappa_floor; in [0, 180].
+    double knife_turn_deg = 120.0;
 };
 
 struct CreaseSnapStats {
