@@ -399,11 +399,12 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const CreaseSnapStats onto_crease = snap_to_acute_creases(out, reference, creases_over_angle, onto_creases);
     // A junction of creases that no vertex could move onto (a quarter of an edge from another,
     // whose vertex it took, or the corner of a knife edge cut short) gets a vertex of its own,
-    // with the explicit creases only.
+    // with the explicit creases only; a knife edge's under the snap's floor for knife edges.
     if (params.feature_angle < 180.0) {
         std::vector<double> floors;
         for (const double turn : creases_over_angle.junction_turns())
-            floors.push_back(turn > steps.knife_turn_deg ? steps.knife_junction_floor : steps.hausdorff_refinement.kappa_floor);
+            floors.push_back(turn > onto_creases.knife_turn_deg ? onto_creases.knife_kappa_floor
+                                                                : steps.hausdorff_refinement.kappa_floor);
         report.vertices_inserted += insert_input_points(out, reference, creases_over_angle.junctions(),
                                                         onto_creases.min_depth, steps.hausdorff_refinement, floors).inserted;
     }

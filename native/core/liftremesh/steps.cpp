@@ -24,14 +24,6 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.hausdorff_refinement.max_distance = spacing * scale;
     s.hausdorff_refinement.max_inserted = sites / 100;
 
-    // Where a knife edge (an interior angle under 60 degrees) meets other creases, the faces'
-    // own angles at the corner are acute and the triangles that reach it from the output cut
-    // short there are poorer than elsewhere: there a corner left up to half an edge off is the
-    // larger defect, and the project's floor holds (issue 35 asks kappa >= 0.3 and every corner
-    // within 0.1 h).
-    s.knife_junction_floor = kKappaFloor;
-    s.knife_turn_deg = 120.0;
-
     // The sites Eq. 10 leaves off a 30-degree edge lie 0.1-0.2 h from it, those of the faces'
     // first rows 0.5 h and more: 0.35 h takes the first and leaves the second. A corner of the
     // creases takes the vertex nearest to it within h.
@@ -39,10 +31,13 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.crease_snap.corner_radius = spacing * scale;
     s.crease_snap.tolerance = tolerance;
     s.crease_snap.kappa_floor = s.hausdorff_refinement.kappa_floor;
-    // Beside a knife edge the faces' acute angle leaves poorer triangles, and a knife edge cut
-    // off is the larger defect: there the project's floor, as for its junctions above.
-    s.crease_snap.knife_kappa_floor = s.knife_junction_floor;
-    s.crease_snap.knife_turn_deg = s.knife_turn_deg;
+    // Beside a knife edge (an interior angle under 60 degrees) and at its junctions with other
+    // creases the faces' acute angles leave poorer triangles, and an edge or a corner cut off
+    // is the larger defect: there the project's floor holds (issue 35 asks kappa >= 0.3, every
+    // crease within 0.1 h of an edge and every corner of a vertex), for the moves onto the edge
+    // and for the junctions inserted after the snap (pipeline.cpp).
+    s.crease_snap.knife_kappa_floor = kKappaFloor;
+    s.crease_snap.knife_turn_deg = 120.0;
     // Every crease over the feature angle (issue 35): its row of vertices within 0.1 h of it,
     // so a vertex whose triangles cut it 0.02 h deep or more moves onto it, from up to h / 2
     // away (the rows of the faces next to a crease that is no sharper than 30 degrees lie nearer

@@ -33,11 +33,6 @@ struct StepSettings {
     // In the input's coordinates:
     BoundarySnapParams boundary_snap;
     HausdorffRefinementParams hausdorff_refinement;
-    //! The kappa floor that the try of a crease junction no vertex reached keeps, in place of
-    //! the refinement's, where a knife edge meets other creases: one of them turning by more
-    //! than knife_turn_deg (degrees).
-    double knife_junction_floor = 0.0;
-    double knife_turn_deg = 0.0;
     CreaseSnapParams crease_snap;
     //! The crease snap onto every crease over the feature angle (its min_turn_deg set from
     //! RemeshParams::feature_angle): a vertex moves wherever the crease is cut at all.

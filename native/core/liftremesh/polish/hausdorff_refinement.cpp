@@ -54,7 +54,7 @@ struct Witness {
 class Refinement {
 public:
     Refinement(const Mesh& mesh, const AabbTree& input, const HausdorffRefinementParams& params)
-        : mesh_(mesh), input_(input), params_(params), floor_(params.kappa_floor) {}
+        : mesh_(mesh), input_(input), params_(params) {}
 
     // Inserts the witnesses of the current mesh; returns how many, marking the triangles made.
     long insert(const std::vector<Eigen::Vector3d>& samples, long allowed) {
@@ -132,10 +132,7 @@ public:
             near_.assign(mesh_.tris.size(), 0);
             EditableMesh before = mesh_;
             long flips = 0;
-            floor_ = floors.empty() ? params_.kappa_floor : floors[i];
-            const bool stands = insert_and_mend(t, points[i], flips);
-            floor_ = params_.kappa_floor;
-            if (!stands) {
+            if (!insert_and_mend(t, points[i], floors.empty() ? params_.kappa_floor : floors[i], flips)) {
                 mesh_ = std::move(before);
                 continue;
             }
@@ -148,13 +145,14 @@ public:
     }
 
     // Flips edges of the triangles made this round, for distance or quality (see the header).
-    long flip_near_insertions() {
+    // Crease flips keep `floor` (the refinement's, or the point's insert_points tries).
+    long flip_near_insertions(double floor) {
         long flipped = 0;
         for (int pass = 0; pass < 5; ++pass) {
             fans_ = mesh_.fans();
             std::vector<char> changed;
             const long flips =
-                mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q); }, changed);
+                mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q, floor); }, changed);
             for (size_t t = 0; t < changed.size(); ++t)
                 if (changed[t]) near_[t] = 1;
             flipped += flips;
@@ -218,9 +216,9 @@ private:
     // splits the triangle it falls in into a needle, whose long edges a flip does not always
     // shorten: split, they give the short triangles such a point needs. Whether every triangle
     // made reaches the floor; the caller restores the mesh if not.
-    bool insert_and_mend(int32_t t, const Eigen::Vector3d& p, long& flips) {
+    bool insert_and_mend(int32_t t, const Eigen::Vector3d& p, double floor, long& flips) {
         if (!split_now(t, p)) return false;
-        flips += flip_near_insertions();
+        flips += flip_near_insertions(floor);
         for (int k = 0;; ++k) {
             double worst = 2.0;
             int32_t worst_t = -1;
@@ -230,7 +228,7 @@ private:
                         worst = kappa;
                         worst_t = static_cast<int32_t>(f);
                     }
-            if (worst >= floor_) return true;
+            if (worst >= floor) return true;
             if (k == kMendSplits) return false;
             const Tri w = mesh_.tris[worst_t];
             auto length2 = [&](int j) { return (mesh_.points[w[j]] - mesh_.points[w[(j + 1) % 3]]).squaredNorm(); };
@@ -239,7 +237,7 @@ private:
                 if (length2(j) > length2(longest)) longest = j;
             const ClosestPoint on = input_.closest(0.5 * (mesh_.points[w[longest]] + mesh_.points[w[(longest + 1) % 3]]));
             if (on.triangle < 0 || !split_now(worst_t, on.point)) return false;
-            flips += flip_near_insertions();
+            flips += flip_near_insertions(floor);
         }
     }
 
@@ -313,19 +311,18 @@ private:
         return true;
     }
 
-    bool should_flip(const EditableMesh::Quad& q) const {
+    bool should_flip(const EditableMesh::Quad& q, double floor) const {
         if (flip_folds_rim(mesh_, q, fans_)) return false;
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         if (before > params_.tolerance && after < 0.5 * before)
-            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor_);
+            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor);
         return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
     }
 
     EditableMesh mesh_;
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
-    double floor_;                // params_.kappa_floor, or the floor of the point insert_points tries
     std::vector<char> near_;      // per triangle: made or changed this round
     CompressedRows fans_;         // per point, its triangles at the start of the flip pass
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
@@ -351,7 +348,7 @@ HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& refer
         const long inserted = refinement.insert(samples, params.max_inserted - stats.inserted);
         if (inserted == 0) break;
         stats.inserted += inserted;
-        stats.flipped += refinement.flip_near_insertions();
+        stats.flipped += refinement.flip_near_insertions(params.kappa_floor);
     }
     refinement.write_to(mesh);
     return stats;

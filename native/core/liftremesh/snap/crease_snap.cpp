@@ -31,10 +31,9 @@ public:
     const EditableMesh& mesh() const { return mesh_; }
 
     // Moves v to x with the flips that follow, or leaves everything as it was (see the header),
-    // where the fan of v lies farther than `depth` from x.
+    // where the fan of v lies farther than `depth` from x; the move and its flips keep `floor`.
     bool snap(int32_t v, const Eigen::Vector3d& x, double depth, long& flips, double floor) {
         if (fans_[v].empty()) return false; // not a vertex of the surface
-        floor_ = floor;
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
         double cut2 = std::numeric_limits<double>::infinity();
@@ -59,14 +58,14 @@ public:
             long pass_flips = 0;
             const std::vector<int> around = touched();
             for (int t : around)
-                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before);
+                for (int j = 0; j < 3; ++j) pass_flips += try_flip(t, j, before, floor);
             made += pass_flips;
             if (pass_flips == 0) break;
         }
         const Measure after = measure(touched());
         for (int t : touched()) region.push_back(t);
         const bool ok = after.off <= before.off && folded_edges(region) <= folded_before &&
-                        after.worst_kappa >= floor_ &&
+                        after.worst_kappa >= floor &&
                         after.farthest <= std::max(params_.tolerance, before.farthest);
         if (ok) {
             flips += made;
@@ -157,12 +156,12 @@ private:
                 if (w == d) return true;
         return false;
     }
-    long try_flip(int t, int j, const Measure& before) {
+    long try_flip(int t, int j, const Measure& before, double floor) {
         const auto q = quad(t, j);
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
-                              std::min(floor_, before.worst_kappa)) &&
+                              std::min(floor, before.worst_kappa)) &&
             !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
             return 0;
         const auto [n1, n2] = EditableMesh::flipped(*q);
@@ -177,7 +176,6 @@ private:
     EditableMesh mesh_;
     const AabbTree& input_;
     const CreaseSnapParams& params_;
-    double floor_ = 0.0; // the move's floor (snap), for its flips too
     std::vector<std::vector<int>> fans_;
     const double cos_off_;
     std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
