@@ -258,6 +258,26 @@ inline Mesh make_plate_with_hole(double w, double h, double r, double edge, int 
     return make_mesh(p, f);
 }
 
+//! A prism of height `height` on a convex polygon (counter-clockwise, in the xy plane), its caps
+//! fanned from their first vertex, outward oriented.
+inline Mesh make_prism(const std::vector<Eigen::Vector2d>& polygon, double height) {
+    const int n = static_cast<int>(polygon.size());
+    std::vector<Eigen::Vector3d> pts;
+    for (double z : {0.0, height})
+        for (const Eigen::Vector2d& p : polygon) pts.emplace_back(p.x(), p.y(), z);
+    std::vector<std::array<int32_t, 3>> tris;
+    for (int i = 1; i + 1 < n; ++i) {
+        tris.push_back({0, i + 1, i});             // bottom, facing -z
+        tris.push_back({n, n + i, n + i + 1});     // top, facing +z
+    }
+    for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n;
+        tris.push_back({i, j, j + n});
+        tris.push_back({i, j + n, i + n});
+    }
+    return make_mesh(pts, tris);
+}
+
 //! Open tube of radius r around the z axis from z = 0 to z = length: n x m quads split in two,
 //! normals pointing out; its two ends are n-gons.
 inline Mesh make_open_cylinder(double r, double length, int n, int m) {

@@ -25,26 +25,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A prism of height `height` on a convex polygon (counter-clockwise, in the xy plane), its caps
-// fanned from their first vertex, outward oriented.
-Mesh prism(const std::vector<Eigen::Vector2d>& polygon, double height) {
-    const int n = static_cast<int>(polygon.size());
-    std::vector<Eigen::Vector3d> pts;
-    for (double z : {0.0, height})
-        for (const Eigen::Vector2d& p : polygon) pts.emplace_back(p.x(), p.y(), z);
-    std::vector<std::array<int32_t, 3>> tris;
-    for (int i = 1; i + 1 < n; ++i) {
-        tris.push_back({0, i + 1, i});             // bottom, facing -z
-        tris.push_back({n, n + i, n + i + 1});     // top, facing +z
-    }
-    for (int i = 0; i < n; ++i) {
-        const int j = (i + 1) % n;
-        tris.push_back({i, j, j + n});
-        tris.push_back({i, j + n, i + n});
-    }
-    return test::make_mesh(pts, tris);
-}
-
 // A polygon whose sides turn by `turns_deg` (summing to 360) at its corners, the first sides of
 // the given lengths, the last two solved so that it closes (both positive for the turns below).
 std::vector<Eigen::Vector2d> polygon_with_turns(const std::vector<double>& turns_deg, const std::vector<double>& sides) {
@@ -156,7 +136,7 @@ struct Remeshed {
     RemeshResult result;
 };
 Remeshed remesh_prism(const PrismCase& c, bool hold_creases = false) {
-    const Mesh input = prism(c.polygon, c.height);
+    const Mesh input = test::make_prism(c.polygon, c.height);
     const int vertices = 6000;
     RemeshParams params = test::params_with(vertices);
     params.hold_creases = hold_creases;
@@ -251,7 +231,7 @@ TEST(SharedMeshCreases, EveryJunctionOfT13LiesOnAVertex) {
 // 0.66 h from the nearest vertex on 7 of seeds 1-16; now on 6 (0.43 to 0.65 h: there the mesh's
 // vertex nearest the tip would leave triangles of kappa 0.17 to 0.24, docs/known-gaps.md).
 TEST(Remesh, TheTipsOfAKnifeEdgeLieOnVerticesOnTenSeedsOfSixteen) {
-    const Mesh input = prism({{0.0, 0.0}, {10.0, 0.0}, {0.0, 4.0}}, 6.0);
+    const Mesh input = test::make_prism({{0.0, 0.0}, {10.0, 0.0}, {0.0, 4.0}}, 6.0);
     const int vertices = 267;
     const double h = edge_length_for(input, vertices);
     int on_vertices = 0;
