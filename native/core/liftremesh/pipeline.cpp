@@ -347,7 +347,9 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
 
     clock.begin("rdt");
     // Eq. 4, Algorithm 3, line 11
-    RestrictedDelaunay rdt = restricted_delaunay(piece.surface, sites, params.threads, {}, &diagram);
+    RestrictedDelaunayParams triangulation;
+    triangulation.held = creases && creases->rows_held() ? held_count : 0;
+    RestrictedDelaunay rdt = restricted_delaunay(piece.surface, sites, params.threads, triangulation, &diagram);
     Mesh out = std::move(rdt.mesh);
     report.sites_split += rdt.split_sites;
     if (out.triangles.rows() == 0)

@@ -8,7 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <set>
+#include <vector>
 
 using namespace liftremesh;
 
@@ -68,6 +73,79 @@ TEST(RestrictedDelaunay, PiecesOfACellOnTwoSidesOfAThinPlateGetAVertexEach) {
         top_vertices += std::abs(z - gap) < 1e-12;
     }
     EXPECT_EQ(top_vertices, 9);
+}
+
+// A knife edge: two faces 3 wide meeting along the z axis at 30 degrees, sites held on the edge
+// 1 apart and a row on each face. The cell of site c, on face A 1.3 from the edge halfway between
+// the edge's sites a and b, reaches round onto face B, where b's and a's cells leave a small
+// piece of it between them and face B's row (under min_piece of its cell, facing away from the
+// rest). Taken as c, that piece gave the triangle (a, b, c) turned over beside face A's own, a
+// pair folded shut that the manifold repair removes, edge (a, b) with it (as with the edge's
+// sites not said to be held). Taken as face B's nearest site there, it gives face B's triangle
+// on the edge.
+TEST(RestrictedDelaunay, APieceOfACellReachingRoundAKnifeEdgeIsTakenAsTheCellOnItsSide) {
+    const double wedge = 30.0 * M_PI / 180.0;
+    const int n = 12; // 0.25 apart
+    std::vector<Eigen::Vector3d> p;
+    std::vector<std::array<int32_t, 3>> f;
+    // Vertex (face, i, j): at distance 3 i / n from the edge on face A (face 0, y = 0) or B, at
+    // height 3 j / n; the edge's vertices (i = 0) shared.
+    auto id = [&](int face, int i, int j) { return i == 0 ? j : (n + 1) + (face * n + i - 1) * (n + 1) + j; };
+    for (int j = 0; j <= n; ++j) p.emplace_back(0.0, 0.0, 3.0 * j / n);
+    for (int face = 0; face < 2; ++face)
+        for (int i = 1; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const double d = 3.0 * i / n, angle = face == 0 ? 0.0 : wedge;
+                p.emplace_back(d * std::cos(angle), d * std::sin(angle), 3.0 * j / n);
+            }
+    for (int face = 0; face < 2; ++face)
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const int32_t a = id(face, i, j), b = id(face, i + 1, j), c = id(face, i + 1, j + 1), d = id(face, i, j + 1);
+                if (face == 0) { // facing -y, out of the wedge
+                    f.push_back({a, b, c});
+                    f.push_back({a, c, d});
+                } else {
+                    f.push_back({a, c, b});
+                    f.push_back({a, d, c});
+                }
+            }
+    const Mesh knife = test::make_mesh(p, f);
+    const LiftedSurface s = make_lifted_surface(knife.points, knife.triangles);
+    auto on = [&](int face, double d, double z) {
+        const double angle = face == 0 ? 0.0 : wedge;
+        return Eigen::RowVector3d(d * std::cos(angle), d * std::sin(angle), z);
+    };
+    std::vector<Eigen::RowVector3d> rows = {on(0, 0.0, 0.0), on(0, 0.0, 1.0), on(0, 0.0, 2.0), on(0, 0.0, 3.0),
+                                            on(0, 1.3, 1.5)}; // a = 1, b = 2, c = 4
+    for (double z : {0.5, 2.5}) rows.push_back(on(0, 1.3, z));
+    for (double z : {0.0, 1.0, 2.0, 3.0}) rows.push_back(on(0, 2.6, z));
+    for (double z : {0.5, 1.5, 2.5}) rows.push_back(on(1, 1.5, z));
+    for (double z : {0.0, 1.0, 2.0, 3.0}) rows.push_back(on(1, 2.6, z));
+    LiftedPoints sites(static_cast<Eigen::Index>(rows.size()), 3);
+    for (size_t k = 0; k < rows.size(); ++k) sites.row(static_cast<Eigen::Index>(k)) = rows[k];
+    RestrictedDelaunayParams params;
+    params.held = 4; // the edge's
+    const RestrictedDelaunay rdt = restricted_delaunay(s, sites, 2, params);
+    const Mesh& out = rdt.mesh;
+    // No triangle twice, turned over, no edge in more than two; edge (a, b) in two triangles,
+    // with c on face A and face B's middle site (12).
+    std::set<std::array<int32_t, 3>> seen;
+    std::map<std::pair<int32_t, int32_t>, int> uses;
+    std::vector<int32_t> across; // the third vertices of the triangles on edge (a, b)
+    for (Eigen::Index t = 0; t < out.triangles.rows(); ++t) {
+        std::array<int32_t, 3> tri = {out.triangles(t, 0), out.triangles(t, 1), out.triangles(t, 2)};
+        std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+        EXPECT_FALSE(seen.count({tri[0], tri[2], tri[1]})) << "triangle " << t << " folded onto another";
+        seen.insert(tri);
+        for (int j = 0; j < 3; ++j) ++uses[std::minmax(tri[j], tri[(j + 1) % 3])];
+        const int ab = (std::count(tri.begin(), tri.end(), 1) > 0) + (std::count(tri.begin(), tri.end(), 2) > 0);
+        if (ab == 2) across.push_back(tri[0] + tri[1] + tri[2] - 3);
+    }
+    for (const auto& [edge, count] : uses) EXPECT_LE(count, 2) << edge.first << "-" << edge.second;
+    std::sort(across.begin(), across.end());
+    EXPECT_EQ(across, (std::vector<int32_t>{4, 12}));
+    EXPECT_EQ(out.points.rows(), sites.rows()); // no cell split
 }
 
 // The pipeline hands the optimiser's RvdCache (neighbour lists made at earlier iterates, a seed

@@ -146,6 +146,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
         if (taken[c]) rows.push_back(static_cast<Eigen::Index>(c));
     held_.resize(static_cast<Eigen::Index>(rows.size()), d);
     for (size_t r = 0; r < rows.size(); ++r) held_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
+    rows_held_ = last == candidates.size() && last > corners;
     // With the corners alone held (a part all creases, as a thread), the free sites are still
     // kept off the creases: the snap after the triangulation (crease_snap.h) then finds the
     // vertices next to a crease far enough from it that its moves keep their triangles whole.

@@ -52,6 +52,8 @@ public:
     //! The held sites (rows, lifted like the surface's points): corners (vertices with other
     //! than two crease edges) first, by vertex index, then the chains'.
     const LiftedPoints& held() const { return held_; }
+    //! Whether sites are held along the creases' chains, not only on their corners.
+    bool rows_held() const { return rows_held_; }
 
     //! `count` sites drawn as random_sites(surface, count, seed) draws them, none of which crowds
     //! a crease (lies closer than the clearance times the spacing there to one, on the lifted
@@ -69,6 +71,7 @@ private:
     std::vector<CreaseEdge> creases_;
     Eigen::VectorXd spacing_;    // per vertex, the local spacing (0 where no crease passes)
     LiftedPoints held_;
+    bool rows_held_ = false;
     std::optional<SegmentIndex> edges_; // the crease edges in 3D, once some site is held
     std::vector<std::pair<Eigen::RowVectorXd, Eigen::RowVectorXd>> lifted_ends_; // per crease edge
     double reach_ = 0.0; // the farthest a site that crowds a crease can be from it

@@ -1,14 +1,23 @@
 #include "liftremesh/cvt/rdt.h"
 
+#include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/geometry.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 namespace liftremesh {
 
 namespace {
+
+// A piece of a cell lies across a knife edge from the rest when their normals turn by more than
+// 90 degrees (a wedge sharper than a right angle), and less than 160: nearly antiparallel, the
+// two sides of a thin wall or slot, which the lifting keeps apart (lift/thin_walls.h).
+constexpr double kAcrossEdgeCos = 0.0, kAcrossWallCos = -0.94;
 
 // The polygon Omega_{k|T_p} of the diagram, as the triangulation needs it.
 struct Piece {
@@ -61,6 +70,8 @@ Piece measure_piece(const LiftedSurface& surface, const RvdPolygon& poly) {
 RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const LiftedPoints& sites, int threads,
                                        const RestrictedDelaunayParams& params, RvdCache* cache) {
     const long ns = static_cast<long>(sites.rows());
+    if (params.held < 0 || params.held > ns)
+        throw InvalidInput("restricted_delaunay: the held sites must be between none and all of them");
     std::vector<ChunkSlot<ChunkFound>> found(rvd_chunks(surface));
     compute_rvd(surface, sites, threads, [&](int chunk, const RvdPolygon& poly) {
         ChunkFound& f = found[chunk].value;
@@ -123,8 +134,12 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     std::vector<double> part_area(static_cast<size_t>(count), 0.0), cell_area(static_cast<size_t>(ns), 0.0);
     std::vector<Eigen::Vector3d> part_moment(static_cast<size_t>(count), Eigen::Vector3d::Zero());
     std::vector<int32_t> part_site(static_cast<size_t>(count), -1);
+    std::vector<Eigen::Vector3d> part_normal(static_cast<size_t>(count), Eigen::Vector3d::Zero()); // area-weighted
+    auto corner3 = [&](long f, int j) -> Eigen::Vector3d { return surface.points.row(tri(f, j)).head<3>().transpose(); };
     for (int i = 0; i < np; ++i) {
         const int part = label[i];
+        const long f = pieces[i].triangle;
+        part_normal[part] += pieces[i].area * triangle_normal(corner3(f, 0), corner3(f, 1), corner3(f, 2));
         part_area[part] += pieces[i].area;
         part_moment[part] += pieces[i].area * pieces[i].centroid;
         part_site[part] = pieces[i].site;
@@ -162,29 +177,111 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             points[k] = part_moment[largest[k]] / part_area[largest[k]];
         }
 
-    // Triangles: the parts of k, l and m at the corner's input triangle (the largest part of l
-    // or m if its cell has no piece there, the corner lying on that triangle's edge).
+    // Triangles: the parts of k, l and m at the corner's input triangle (none for l or m if its
+    // cell has no piece there, the corner lying on that triangle's edge: then its largest).
     std::vector<std::pair<std::int64_t, int>> piece_at; // (site * #F + triangle, piece), sorted
     piece_at.reserve(static_cast<size_t>(np));
     const std::int64_t nf = tri.rows();
     for (int i = 0; i < np; ++i) piece_at.emplace_back(pieces[i].site * nf + pieces[i].triangle, i);
     std::sort(piece_at.begin(), piece_at.end());
-    auto vertex_at = [&](int32_t site, int32_t triangle) {
+    auto part_at = [&](int32_t site, int32_t triangle) {
         const auto it = std::lower_bound(piece_at.begin(), piece_at.end(), std::make_pair(site * nf + triangle, -1));
-        return it != piece_at.end() && it->first == site * nf + triangle ? vertex_of_part[label[it->second]] : site;
+        return it != piece_at.end() && it->first == site * nf + triangle ? label[it->second] : -1;
+    };
+    auto corner_parts = [&](const Corner& c) {
+        const int32_t triangle = pieces[c.piece].triangle;
+        return std::array<std::pair<int32_t, int>, 3>{
+            {{pieces[c.piece].site, label[c.piece]}, {c.l, part_at(c.l, triangle)}, {c.m, part_at(c.m, triangle)}}};
+    };
+    // Rotated so the smallest index comes first (the three cells report the same triangle); none
+    // if a part is left out (-1) or taken as one of the triangle's other cells (below).
+    auto triangle_of = [&](const Corner& c) -> std::optional<std::array<int32_t, 3>> {
+        std::array<int32_t, 3> t;
+        const auto parts = corner_parts(c);
+        for (int j = 0; j < 3; ++j) t[j] = parts[j].second < 0 ? parts[j].first : vertex_of_part[parts[j].second];
+        if (t[0] < 0 || t[1] < 0 || t[2] < 0 || t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return std::nullopt;
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        return t;
     };
     std::vector<std::array<int32_t, 3>> all;
-    all.reserve(corners.size());
-    for (const Corner& c : corners) {
-        const Piece& piece = pieces[c.piece];
-        std::array<int32_t, 3> t = {vertex_of_part[label[c.piece]], vertex_at(c.l, piece.triangle),
-                                    vertex_at(c.m, piece.triangle)};
-        // Rotate so the smallest index comes first: the three cells report the same triangle.
-        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-        all.push_back(t);
+    auto triangulate = [&] {
+        all.clear();
+        for (const Corner& c : corners)
+            if (const auto t = triangle_of(c)) all.push_back(*t);
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+    };
+    triangulate();
+
+    // A small part taken as its cell's largest may lie across a knife edge from it (their
+    // normals 90 to 160 degrees apart): where the edge's sites are held (params.held), a cell
+    // near it on one face reaches round onto the other between two of them. Its triangles then
+    // join the faces through the wedge: the held pair's triangle on the other face turned over
+    // (a pair folded shut, which the manifold repair removes with the crease edge), or triangles
+    // across it, three on an edge. There the part is taken as the nearest of its neighbours on
+    // its own side (their largest parts facing as it does), as if that cell covered it: the
+    // triangles it made with that neighbour vanish, the others are that neighbour's (without
+    // one, they are left out), and kept so where they come out whole. With a vertex of its own,
+    // a sliver's width from the edge, it would fold its few triangles.
+    if (params.held > 0) {
+        auto across_edge = [&](int part) {
+            const int32_t k = part_site[part];
+            const Eigen::Vector3d &n = part_normal[part], &m = part_normal[largest[k]];
+            const double cos_turn = n.dot(m) / (n.norm() * m.norm());
+            return part != largest[k] && !large(part) && part_area[part] > 0.0 && cos_turn < kAcrossEdgeCos &&
+                   cos_turn > kAcrossWallCos;
+        };
+        auto edge = [](int32_t a, int32_t b) { return std::pair<int32_t, int32_t>{std::min(a, b), std::max(a, b)}; };
+        std::vector<std::pair<int32_t, int32_t>> edges; // each triangle's, sorted: an edge's uses
+        auto broken = [&](const std::array<int32_t, 3>& t) { // folded onto another, or an edge in three
+            if (std::binary_search(all.begin(), all.end(), std::array<int32_t, 3>{t[0], t[2], t[1]})) return true;
+            for (int j = 0; j < 3; ++j) {
+                const auto range = std::equal_range(edges.begin(), edges.end(), edge(t[j], t[j == 2 ? 0 : j + 1]));
+                if (range.second - range.first > 2) return true;
+            }
+            return false;
+        };
+        auto list_edges = [&] {
+            edges.clear();
+            for (const auto& t : all)
+                for (int j = 0; j < 3; ++j) edges.push_back(edge(t[j], t[j == 2 ? 0 : j + 1]));
+            std::sort(edges.begin(), edges.end());
+        };
+        list_edges();
+        std::vector<std::pair<double, int32_t>> stand_in(static_cast<size_t>(count), {-1.0, -1}); // (d^2, site)
+        for (const Corner& c : corners)
+            if (const auto t = triangle_of(c); t && broken(*t))
+                for (const auto& [site, part] : corner_parts(c))
+                    if (part >= 0 && across_edge(part)) stand_in[part].first = std::numeric_limits<double>::infinity();
+        bool taken = false;
+        for (const Corner& c : corners) {
+            const int part = label[c.piece];
+            if (!(stand_in[part].first > 0.0)) continue;
+            taken = true;
+            const Eigen::Vector3d centroid = part_moment[part] / part_area[part];
+            for (const int32_t other : {c.l, c.m}) {
+                if (largest[other] < 0 || !(part_normal[largest[other]].dot(part_normal[part]) > 0.0)) continue;
+                const double d = (sites.row(other).head<3>().transpose() - centroid).squaredNorm();
+                if (d < stand_in[part].first) stand_in[part] = {d, other};
+            }
+        }
+        if (taken) {
+            for (int part = 0; part < count; ++part)
+                if (stand_in[part].first > 0.0) vertex_of_part[part] = stand_in[part].second;
+            triangulate();
+            list_edges();
+            bool undone = false;
+            for (const Corner& c : corners) {
+                const int part = label[c.piece];
+                if (!(stand_in[part].first > 0.0) || vertex_of_part[part] == part_site[part]) continue;
+                if (const auto t = triangle_of(c); t && broken(*t)) {
+                    vertex_of_part[part] = part_site[part];
+                    undone = true;
+                }
+            }
+            if (undone) triangulate();
+        }
     }
-    std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
 
     result.mesh = make_mesh(points, all);
     return result;

@@ -12,6 +12,11 @@ struct RestrictedDelaunayParams {
     //! through a triangle's vertex leaves on a neighbouring triangle would otherwise make a
     //! vertex with a triangle or two.
     double min_piece = 0.05;
+    //! Sites [0, held) are held along creases (cvt/crease_sites.h). If there are any, such a
+    //! small piece that lies across a knife edge from its cell's largest (normals 90 to 160
+    //! degrees apart) and whose triangles would fold shut or pile three on an edge is taken
+    //! as its nearest neighbouring cell on its own side instead. Not negative.
+    long held = 0;
 };
 
 struct RestrictedDelaunay {
