@@ -194,12 +194,12 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             {{pieces[c.piece].site, label[c.piece]}, {c.l, part_at(c.l, triangle)}, {c.m, part_at(c.m, triangle)}}};
     };
     // Rotated so the smallest index comes first (the three cells report the same triangle); none
-    // if a part is left out (-1) or taken as one of the triangle's other cells (below).
+    // if a part is taken as one of the triangle's other cells (below).
     auto triangle_of = [&](const Corner& c) -> std::optional<std::array<int32_t, 3>> {
         std::array<int32_t, 3> t;
         const auto parts = corner_parts(c);
         for (int j = 0; j < 3; ++j) t[j] = parts[j].second < 0 ? parts[j].first : vertex_of_part[parts[j].second];
-        if (t[0] < 0 || t[1] < 0 || t[2] < 0 || t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return std::nullopt;
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return std::nullopt;
         std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
         return t;
     };
@@ -220,9 +220,9 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     // (a pair folded shut, which the manifold repair removes with the crease edge), or triangles
     // across it, three on an edge. There the part is taken as the nearest of its neighbours on
     // its own side (their largest parts facing as it does), as if that cell covered it: the
-    // triangles it made with that neighbour vanish, the others are that neighbour's (without
-    // one, they are left out), and kept so where they come out whole. With a vertex of its own,
-    // a sliver's width from the edge, it would fold its few triangles.
+    // triangles it made with that neighbour vanish, the others are that neighbour's; kept so
+    // where they come out whole (and, without such a neighbour, left as it was). With a vertex
+    // of its own, a sliver's width from the edge, it would fold its few triangles.
     if (params.held > 0) {
         auto across_edge = [&](int part) {
             const int32_t k = part_site[part];
@@ -248,16 +248,16 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             std::sort(edges.begin(), edges.end());
         };
         list_edges();
-        std::vector<std::pair<double, int32_t>> stand_in(static_cast<size_t>(count), {-1.0, -1}); // (d^2, site)
+        std::vector<char> marked(static_cast<size_t>(count), 0);
         for (const Corner& c : corners)
             if (const auto t = triangle_of(c); t && broken(*t))
                 for (const auto& [site, part] : corner_parts(c))
-                    if (part >= 0 && across_edge(part)) stand_in[part].first = std::numeric_limits<double>::infinity();
-        bool taken = false;
+                    if (part >= 0 && across_edge(part)) marked[part] = 1;
+        // Each marked part's nearest neighbour on its side: (squared distance, site), -1 if none.
+        std::vector<std::pair<double, int32_t>> stand_in(static_cast<size_t>(count), {std::numeric_limits<double>::infinity(), -1});
         for (const Corner& c : corners) {
             const int part = label[c.piece];
-            if (!(stand_in[part].first > 0.0)) continue;
-            taken = true;
+            if (!marked[part]) continue;
             const Eigen::Vector3d centroid = part_moment[part] / part_area[part];
             for (const int32_t other : {c.l, c.m}) {
                 if (largest[other] < 0 || !(part_normal[largest[other]].dot(part_normal[part]) > 0.0)) continue;
@@ -265,15 +265,19 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
                 if (d < stand_in[part].first) stand_in[part] = {d, other};
             }
         }
+        bool taken = false;
+        for (int part = 0; part < count; ++part)
+            if (stand_in[part].second >= 0) {
+                vertex_of_part[part] = stand_in[part].second;
+                taken = true;
+            }
         if (taken) {
-            for (int part = 0; part < count; ++part)
-                if (stand_in[part].first > 0.0) vertex_of_part[part] = stand_in[part].second;
             triangulate();
             list_edges();
             bool undone = false;
             for (const Corner& c : corners) {
                 const int part = label[c.piece];
-                if (!(stand_in[part].first > 0.0) || vertex_of_part[part] == part_site[part]) continue;
+                if (stand_in[part].second < 0 || vertex_of_part[part] == part_site[part]) continue;
                 if (const auto t = triangle_of(c); t && broken(*t)) {
                     vertex_of_part[part] = part_site[part];
                     undone = true;
