@@ -403,10 +403,9 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     // whose vertex it took, or the corner of a knife edge cut short) gets a vertex of its own,
     // with the explicit creases only; a knife edge's under the snap's floor for knife edges.
     if (params.feature_angle < 180.0) {
+        // (onto_creases.kappa_floor is the refinement's: steps.cpp.)
         std::vector<double> floors;
-        for (const double turn : creases_over_angle.junction_turns())
-            floors.push_back(turn > onto_creases.knife_turn_deg ? onto_creases.knife_kappa_floor
-                                                                : steps.hausdorff_refinement.kappa_floor);
+        for (const double turn : creases_over_angle.junction_turns()) floors.push_back(onto_creases.kappa_floor_beside(turn));
         report.vertices_inserted += insert_input_points(out, reference, creases_over_angle.junctions(),
                                                         onto_creases.min_depth, steps.hausdorff_refinement, floors).inserted;
     }

@@ -252,8 +252,7 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     std::sort(near.begin(), near.end(),
               [](const auto& l, const auto& r) { return std::tie(std::get<0>(l), std::get<1>(l)) < std::tie(std::get<0>(r), std::get<1>(r)); });
     for (const auto& [distance, v, x, segment] : near) {
-        const double floor = creases.turn(segment) > params.knife_turn_deg ? params.knife_kappa_floor : params.kappa_floor;
-        if (!moved[v] && snapper.snap(v, x, depth, stats.flipped, floor)) {
+        if (!moved[v] && snapper.snap(v, x, depth, stats.flipped, params.kappa_floor_beside(creases.turn(segment)))) {
             moved[v] = 1;
             ++stats.moved;
         }

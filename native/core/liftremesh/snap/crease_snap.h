@@ -68,6 +68,10 @@ struct CreaseSnapParams {
     double knife_kappa_floor = kKappaFloorOnInput;
     //! See knife_kappa_floor; in [0, 180].
     double knife_turn_deg = 120.0;
+
+    //! The floor beside a crease whose faces turn by `turn_deg`: knife_kappa_floor past
+    //! knife_turn_deg, else kappa_floor.
+    double kappa_floor_beside(double turn_deg) const { return turn_deg > knife_turn_deg ? knife_kappa_floor : kappa_floor; }
 };
 
 struct CreaseSnapStats {
