@@ -2,6 +2,7 @@
 
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/mesh/mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -223,7 +224,7 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     // triangles it made with that neighbour vanish, the others are that neighbour's; kept so
     // where they come out whole (and, without such a neighbour, left as it was). With a vertex
     // of its own, a sliver's width from the edge, it would fold its few triangles.
-    if (params.held > 0) {
+    if (params.held > 0 && !all.empty()) {
         auto across_edge = [&](int part) {
             const int32_t k = part_site[part];
             const Eigen::Vector3d &n = part_normal[part], &m = part_normal[largest[k]];
@@ -231,21 +232,22 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
             return part != largest[k] && !large(part) && part_area[part] > 0.0 && cos_turn < kAcrossEdgeCos &&
                    cos_turn > kAcrossWallCos;
         };
-        auto edge = [](int32_t a, int32_t b) { return std::pair<int32_t, int32_t>{std::min(a, b), std::max(a, b)}; };
-        std::vector<std::pair<int32_t, int32_t>> edges; // each triangle's, sorted: an edge's uses
+        // The edges of `all` (a triangle a row of three corners, as edge_uses reads them).
+        static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(int32_t));
+        EdgeUses edges;
+        auto list_edges = [&] { edges = edge_uses(all.front().data(), static_cast<long>(all.size())); };
+        auto uses = [&](int32_t p, int32_t q) -> long { // triangles on edge {p, q}
+            const int32_t lo = std::min(p, q), hi = std::max(p, q);
+            const auto from = std::lower_bound(edges.a.begin(), edges.a.end(), lo) - edges.a.begin();
+            const auto to = std::upper_bound(edges.a.begin() + from, edges.a.end(), lo) - edges.a.begin();
+            const auto e = std::lower_bound(edges.b.begin() + from, edges.b.begin() + to, hi) - edges.b.begin();
+            return e < to && edges.b[e] == hi ? edges.count(e) : 0;
+        };
         auto broken = [&](const std::array<int32_t, 3>& t) { // folded onto another, or an edge in three
             if (std::binary_search(all.begin(), all.end(), std::array<int32_t, 3>{t[0], t[2], t[1]})) return true;
-            for (int j = 0; j < 3; ++j) {
-                const auto range = std::equal_range(edges.begin(), edges.end(), edge(t[j], t[j == 2 ? 0 : j + 1]));
-                if (range.second - range.first > 2) return true;
-            }
+            for (int j = 0; j < 3; ++j)
+                if (uses(t[j], t[j == 2 ? 0 : j + 1]) > 2) return true;
             return false;
-        };
-        auto list_edges = [&] {
-            edges.clear();
-            for (const auto& t : all)
-                for (int j = 0; j < 3; ++j) edges.push_back(edge(t[j], t[j == 2 ? 0 : j + 1]));
-            std::sort(edges.begin(), edges.end());
         };
         list_edges();
         std::vector<char> marked(static_cast<size_t>(count), 0);
