@@ -1,5 +1,6 @@
 // Vertices onto the input's acute creases: a knife edge cut by a row of vertices in the wedge's
-// middle plane gets the row back on the edge; a right-angled edge, not acute, is left alone.
+// middle plane gets the row back on the edge; a right-angled edge, not acute, is left alone. And
+// the creases' bends that a mesh's creases cut across.
 #include "liftremesh/exceptions.h"
 #include "liftremesh/snap/crease_snap.h"
 #include "liftremesh/spatial/aabb_tree.h"
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace liftremesh;
@@ -144,6 +146,63 @@ TEST(AcuteCreases, EachJunctionHasItsSharpestCreasesTurn) {
     }
 }
 
+// A prism on a regular 16-gon of radius 1: its rims are chains of 90-degree creases turning by
+// 22.5 degrees at each vertex (a hole's rim as a CAD tessellation gives it); its sides, turning
+// by 22.5 degrees, are no creases at 30.
+Mesh sixteen_gon_prism() {
+    std::vector<Eigen::Vector2d> polygon;
+    for (int i = 0; i < 16; ++i) polygon.emplace_back(std::cos(i * kPi / 8.0), std::sin(i * kPi / 8.0));
+    return test::make_prism(polygon, 3.0);
+}
+
+TEST(AcuteCreases, BendsAreTheInnerVerticesWhereAChainTurns) {
+    const AcuteCreases prism(sixteen_gon_prism(), 30.0, 0.1);
+    const std::vector<AcuteCreases::Bend> bends = prism.bends(10.0);
+    ASSERT_EQ(bends.size(), 32u);
+    for (const AcuteCreases::Bend& b : bends) {
+        EXPECT_NEAR(b.turn_deg, 22.5, 1e-9);
+        EXPECT_NEAR(b.point.head<2>().norm(), 1.0, 1e-12);
+    }
+    EXPECT_TRUE(prism.bends(23.0).empty());
+    // A cube's creases meet three at each corner, junctions, and run straight through the
+    // middles of its edges: 12 inner vertices that turn by nothing.
+    const AcuteCreases cube(test::make_cube(0.5, 2), 30.0, 0.1);
+    EXPECT_EQ(cube.bends(0.0).size(), 12u);
+    EXPECT_TRUE(cube.bends(1e-6).empty());
+}
+
+// The same prism remeshed as one on the octagon through every other corner: its rims' chords
+// pass 1 - cos(22.5 deg) = 0.076 inside the sixteen-gon's odd corners, and its sides (turning
+// by 45 degrees) 0.39 from them.
+TEST(CreaseSnap, ListsTheBendsTheMeshsCreasesCutAcross) {
+    const Mesh input = sixteen_gon_prism();
+    std::vector<Eigen::Vector2d> octagon;
+    for (int i = 0; i < 8; ++i) octagon.emplace_back(std::cos(i * kPi / 4.0), std::sin(i * kPi / 4.0));
+    const Mesh octagonal = test::make_prism(octagon, 3.0);
+    const AcuteCreases creases(input, 30.0, 0.1);
+    CreaseSnapParams p = params_for(0.5);
+    p.bend_distance = 0.07;
+    const std::vector<AcuteCreases::Bend> off = bends_off_mesh_creases(octagonal, creases, p);
+    ASSERT_EQ(off.size(), 16u);
+    for (const AcuteCreases::Bend& b : off) {
+        const double angle = std::atan2(b.point.y(), b.point.x()) * 8.0 / kPi; // an odd multiple of 22.5 degrees
+        EXPECT_NEAR(std::abs(std::fmod(angle, 2.0)), 1.0, 1e-9) << b.point.transpose();
+    }
+    p.bend_distance = 0.08;
+    EXPECT_TRUE(bends_off_mesh_creases(octagonal, creases, p).empty());
+    p.bend_distance = 0.07;
+    EXPECT_TRUE(bends_off_mesh_creases(input, creases, p).empty()); // on the mesh's own creases
+    p.bend_turn_deg = 23.0;
+    EXPECT_TRUE(bends_off_mesh_creases(octagonal, creases, p).empty());
+    p = params_for(0.5);
+    EXPECT_TRUE(bends_off_mesh_creases(octagonal, creases, p).empty()); // bend_distance 0: none
+    p.bend_distance = -1.0;
+    EXPECT_THROW(bends_off_mesh_creases(octagonal, creases, p), InvalidInput);
+    p.bend_distance = 0.07;
+    p.bend_turn_deg = 190.0;
+    EXPECT_THROW(bends_off_mesh_creases(octagonal, creases, p), InvalidInput);
+}
+
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
     const double h = 0.1;
     {
@@ -186,6 +245,9 @@ TEST(CreaseSnap, RejectsBadParameters) {
     EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
     p = params_for(0.1);
     p.knife_turn_deg = 181.0;
+    EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
+    p = params_for(0.1);
+    p.bend_distance = std::numeric_limits<double>::infinity();
     EXPECT_THROW(snap_to_acute_creases(mesh, {input, tree}, p), InvalidInput);
 }
 

@@ -36,6 +36,39 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
     index_.emplace(segments_, spacing);
 }
 
+std::vector<AcuteCreases::Bend> AcuteCreases::bends(double min_turn_deg) const {
+    // Each inner vertex's two crease edges.
+    std::unordered_map<int32_t, std::pair<long, long>> edges_at;
+    for (long s = 0; s < size(); ++s)
+        for (const int32_t v : {ends_[s].first, ends_[s].second})
+            if (degree_.at(v) == 2) {
+                auto [it, fresh] = edges_at.try_emplace(v, s, -1L);
+                if (!fresh) it->second.second = s;
+            }
+    const double min_cos = std::cos(min_turn_deg * M_PI / 180.0);
+    std::vector<Bend> out;
+    for (const auto& [v, pair] : edges_at) {
+        const auto& [s, t] = pair;
+        if (t < 0) continue;
+        // Both edges' directions taken away from v: a straight chain has them opposite.
+        auto away = [&](long e) {
+            const auto& [a, b] = segments_[e];
+            return ends_[e].first == v ? Eigen::Vector3d(b - a) : Eigen::Vector3d(a - b);
+        };
+        const Eigen::Vector3d u = away(s), w = away(t);
+        const double lengths = u.norm() * w.norm();
+        if (!(lengths > 0.0)) continue;
+        const double cosine = -u.dot(w) / lengths;
+        if (cosine > min_cos) continue;
+        const Eigen::Vector3d x = ends_[s].first == v ? segments_[s].first : segments_[s].second;
+        out.push_back({x, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI});
+    }
+    std::sort(out.begin(), out.end(), [](const Bend& l, const Bend& r) {
+        return std::lexicographical_compare(l.point.data(), l.point.data() + 3, r.point.data(), r.point.data() + 3);
+    });
+    return out;
+}
+
 std::optional<AcuteCreases::Nearest> AcuteCreases::nearest(const Eigen::Vector3d& p, double radius) const {
     index_->near(p, radius, found_);
     std::optional<Nearest> best;

@@ -32,6 +32,14 @@ public:
     const std::vector<Eigen::Vector3d>& junctions() const { return junctions_; }
     //! Per junction, the turn of its sharpest crease, in degrees: over 120 at a knife edge's.
     const std::vector<double>& junction_turns() const { return junction_turns_; }
+    //! An input vertex inside a chain of creases (two crease edges meet there) where the chain
+    //! turns: a tessellation's vertex of a curved crease, the rim of a hole.
+    struct Bend {
+        Eigen::Vector3d point;
+        double turn_deg; //!< between the directions of its two crease edges, in [0, 180]
+    };
+    //! The bends turning by `min_turn_deg` degrees or more, in lexicographic order.
+    std::vector<Bend> bends(double min_turn_deg) const;
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
     //! How far crease edge `s`'s two triangles turn, in degrees.

@@ -3,7 +3,9 @@
 #include "liftremesh/edit/acute_creases.h"
 #include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/exceptions.h"
+#include "liftremesh/mesh/creases.h"
 #include "liftremesh/mesh/geometry.h"
+#include "liftremesh/spatial/segment_index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,10 @@
 namespace liftremesh {
 
 namespace {
+
+// An output edge whose triangles turn by more than this (degrees) stands for a crease: issue 35's
+// check counts a crease kept where such an edge runs near it.
+constexpr double kMeshCreaseDeg = 15.0;
 
 using Tri = EditableMesh::Tri;
 
@@ -181,6 +187,11 @@ private:
     std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
 };
 
+bool bend_params_valid(const CreaseSnapParams& params) {
+    return params.bend_turn_deg >= 0.0 && params.bend_turn_deg <= 180.0 && params.bend_distance >= 0.0 &&
+           std::isfinite(params.bend_distance);
+}
+
 // Throws InvalidInput, naming the step, if an index or a parameter is out of range.
 void check_snap(const Mesh& mesh, const Mesh& input, const CreaseSnapParams& params) {
     check_indices(mesh, "snapped mesh");
@@ -190,10 +201,10 @@ void check_snap(const Mesh& mesh, const Mesh& input, const CreaseSnapParams& par
         !(std::isnan(params.min_depth) || params.min_depth >= 0.0) ||
         !(params.min_turn_deg >= 0.0) || !(params.min_turn_deg <= 180.0) || !(params.kappa_floor >= 0.0) ||
         !(params.knife_kappa_floor >= 0.0) || !(params.knife_turn_deg >= 0.0) || !(params.knife_turn_deg <= 180.0) ||
-        !(params.min_length >= 0.0))
+        !(params.min_length >= 0.0) || !bend_params_valid(params))
         throw InvalidInput("snap_to_acute_creases: the radius and tolerance must be positive and finite, the corner "
-                           "radius, depth and length not negative, the turns between 0 and 180 degrees, the kappa floors "
-                           "not negative");
+                           "radius, depth, length and bend distance not negative (the last finite), the turns between 0 "
+                           "and 180 degrees, the kappa floors not negative");
 }
 
 } // namespace
@@ -259,6 +270,32 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& reference, co
     }
     if (stats.moved > 0) snapper.mesh().write_to(mesh);
     return stats;
+}
+
+std::vector<AcuteCreases::Bend> bends_off_mesh_creases(const Mesh& mesh, const AcuteCreases& creases,
+                                                       const CreaseSnapParams& params) {
+    check_indices(mesh, "mesh");
+    if (!bend_params_valid(params))
+        throw InvalidInput("bends_off_mesh_creases: the bend's turn must be between 0 and 180 degrees, its distance "
+                           "not negative and finite");
+    std::vector<AcuteCreases::Bend> out;
+    if (!(params.bend_distance > 0.0)) return out;
+    // The mesh's own creases, as issue 35's check counts them.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bent;
+    for (const CreaseEdge& e : crease_edges(mesh, kMeshCreaseDeg))
+        bent.emplace_back(mesh.points.row(e.a).transpose(), mesh.points.row(e.b).transpose());
+    const std::vector<AcuteCreases::Bend> bends = creases.bends(params.bend_turn_deg);
+    if (bent.empty()) return bends;
+    const SegmentIndex index(bent, params.bend_distance);
+    std::vector<int32_t> near;
+    for (const AcuteCreases::Bend& b : bends) {
+        index.near(b.point, params.bend_distance, near);
+        const bool passed = std::any_of(near.begin(), near.end(), [&](int32_t k) {
+            return (closest_point_on_segment(b.point, bent[k].first, bent[k].second) - b.point).norm() <= params.bend_distance;
+        });
+        if (!passed) out.push_back(b);
+    }
+    return out;
 }
 
 } // namespace liftremesh

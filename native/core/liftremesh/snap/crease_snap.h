@@ -37,6 +37,7 @@
 #include "liftremesh/spatial/reference.h"
 
 #include <limits>
+#include <vector>
 
 namespace liftremesh {
 
@@ -68,6 +69,14 @@ struct CreaseSnapParams {
     double knife_kappa_floor = kKappaFloorOnInput;
     //! See knife_kappa_floor; in [0, 180].
     double knife_turn_deg = 120.0;
+    //! Where a chain of creases turns by bend_turn_deg degrees or more at an input vertex (a
+    //! bend: AcuteCreases::bends) and no edge of the output whose triangles turn by more than 15
+    //! degrees passes within bend_distance of it, the output's crease cuts across the bend as a
+    //! chord, as round a hole a few edges across: bends_off_mesh_creases lists such bends, each
+    //! for a vertex of its own (pipeline.cpp). In [0, 180].
+    double bend_turn_deg = 10.0;
+    //! See bend_turn_deg. Not negative and finite; 0 lists none.
+    double bend_distance = 0.0;
 
     //! The floor beside a crease whose faces turn by `turn_deg`: knife_kappa_floor past
     //! knife_turn_deg, else kappa_floor.
@@ -91,5 +100,12 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const 
 //! spacing, so that the steps that follow the same creases (crease_curves.h) share them.
 CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const AcuteCreases& creases,
                                       const CreaseSnapParams& params);
+
+//! The bends of `creases` that the creases of `mesh` cut across (see
+//! CreaseSnapParams::bend_turn_deg), in AcuteCreases::bends' order; none if params.bend_distance
+//! is 0. Throws InvalidInput if bend_turn_deg is outside [0, 180] or bend_distance is negative
+//! or not finite, or an index of `mesh` is out of range.
+std::vector<AcuteCreases::Bend> bends_off_mesh_creases(const Mesh& mesh, const AcuteCreases& creases,
+                                                       const CreaseSnapParams& params);
 
 } // namespace liftremesh
