@@ -314,8 +314,13 @@ class StlOnlyTest(unittest.TestCase):
         bottom = planar_face(solid, lambda f: f.BoundBox.ZMax < 1e-4)
         fem_mesh = self.fem_obj.FemMesh
         table = meshtools.get_femelement_table(fem_mesh)
-        for name in faces["fixed"]:  # a triangle: its corners and middles, and those of no other
-            self.assertEqual(len(fem_mesh.getNodesByFace(solid.getElement(name))), 6, name)
+        for name in faces["fixed"]:  # its element faces' corners and middles, no other's, covering it
+            face = solid.getElement(name)
+            face_table = meshtools.get_ref_facenodes_table(fem_mesh, table, face)
+            self.assertTrue(face_table and all(len(ns) == 6 for ns in face_table.values()), name)
+            self.assertEqual(set(fem_mesh.getNodesByFace(face)), {n for ns in face_table.values() for n in ns}, name)
+            covered = sum(a for _, a in meshtools.get_ref_facenodes_areas(fem_mesh.Nodes, face_table))
+            self.assertAlmostEqual(covered / face.Area, 1.0, places=6, msg=name)
         for names in (faces["loaded"], [bottom]):
             covered = total = 0.0
             for name in names:

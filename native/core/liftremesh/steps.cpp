@@ -18,7 +18,8 @@ StepSettings step_settings(double spacing, double scale, long sites) {
 
     // Points of a chamfer are at most about h / 2 deep: farther ones are a part the output lost.
     // Samples h / 2 apart put two or more along a chamfer (h / 4 finds the same chamfers at
-    // twice the cost); at most 1% of the vertices asked for are inserted.
+    // twice the cost); at most 1% of the vertices asked for are inserted, and as many again for
+    // the creases' junctions and for their bends (pipeline.cpp).
     s.hausdorff_refinement.tolerance = tolerance;
     s.hausdorff_refinement.sample_spacing = 0.5 * spacing * scale;
     s.hausdorff_refinement.max_distance = spacing * scale;
@@ -51,6 +52,12 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.feature_snap.radius = 0.5 * spacing * scale;
     s.feature_snap.min_length = 2.0 * spacing * scale;
     s.feature_snap.tolerance = 0.1 * spacing * scale;
+    // Issue 35 counts a crease kept where an output edge turning by 15 degrees runs within 0.1 h
+    // of it. The rim of a hole an edge length or two across, tessellated by chords turning by
+    // 20-40 degrees a vertex, is cut across by the output's chords up to 0.2 h inside its bends:
+    // a bend that no such edge passes within 0.07 h of gets a vertex of its own.
+    s.feature_snap.bend_turn_deg = 10.0;
+    s.feature_snap.bend_distance = 0.07 * spacing * scale;
 
     // The output's crease vertices are the snap's, on the chords, or within its 0.02 h depth of
     // them: those within 0.05 h move towards the curves by at most 0.05 h, so the output stays

@@ -352,6 +352,25 @@ TEST(InsertInputPoints, TriesSixtyFourPointsFarthestFromAVertexFirst) {
     EXPECT_TRUE(test::topology(m).oriented_manifold());
 }
 
+// And none once params.max_inserted vertices were added: the creases' bends may be many, and
+// the vertices asked for stay the budget (steps.cpp: 1% of them).
+TEST(InsertInputPoints, StopsOnceTheMostInsertionsWereMade) {
+    constexpr int kCells = 10;
+    constexpr double kCell = 0.1;
+    const Mesh square = test::make_square(kCells * kCell, kCells);
+    std::vector<Eigen::Vector3d> points;
+    for (int j = 0; j < kCells; ++j)
+        for (int i = 0; i < kCells; ++i) points.emplace_back((i + 0.3) * kCell, (j + 0.3) * kCell, 0.0);
+    for (const long most : {0L, 1L, 10L}) {
+        Mesh m = square;
+        HausdorffRefinementParams p = params_for(kCell);
+        p.max_inserted = most;
+        EXPECT_EQ(insert_input_points(m, test::OwnedReference(square), points, 0.02 * kCell, p).inserted, most);
+        EXPECT_EQ(m.points.rows(), square.points.rows() + most);
+        EXPECT_TRUE(test::topology(m).oriented_manifold());
+    }
+}
+
 TEST(InsertInputPoints, BadArgumentsAreRejected) {
     const Mesh input = crease_input();
     Mesh m = creased();
@@ -365,6 +384,9 @@ TEST(InsertInputPoints, BadArgumentsAreRejected) {
     HausdorffRefinementParams no_tolerance = p;
     no_tolerance.tolerance = 0.0;
     EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, no_tolerance), InvalidInput);
+    HausdorffRefinementParams fewer_than_none = p;
+    fewer_than_none.max_inserted = -1;
+    EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, fewer_than_none), InvalidInput);
     EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, p, {0.3, 0.3}), InvalidInput);
     EXPECT_THROW(insert_input_points(m, test::OwnedReference(input), points, 0.0, p, {-0.1}), InvalidInput);
     Mesh broken = creased();

@@ -76,11 +76,12 @@ public:
 
     // Inserts each of the `points` that `todo` lists and that has no vertex within `gap` nor
     // lies farther than the largest distance from the mesh (insert_input_points), farthest
-    // from a vertex first, while `tries` lasts; returns the vertices added, adding the flips
+    // from a vertex first, while `tries` lasts and fewer than `budget` vertices were added
+    // (a try may add up to 1 + kMendSplits); returns the vertices added, adding the flips
     // made to `flipped`. Leaves in `todo` the points that an insertion before them came near
     // (its triangles as near as the point's closest or within the gap), for another call.
     long insert_points(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& floors, double gap,
-                       std::vector<size_t>& todo, long& tries, long& flipped) {
+                       std::vector<size_t>& todo, long& tries, long budget, long& flipped) {
         const AabbTree tree(mesh_.to_mesh());
         struct Wanted {
             double away;      // from the nearest corner of its closest triangle
@@ -127,7 +128,7 @@ public:
                 todo.push_back(i);
                 continue;
             }
-            if (tries == 0) break;
+            if (tries == 0 || static_cast<long>(mesh_.points.size() - vertices) >= budget) break;
             --tries;
             near_.assign(mesh_.tris.size(), 0);
             EditableMesh before = mesh_;
@@ -361,9 +362,9 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
     check_indices(reference.mesh, "input mesh");
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     if (!(gap >= 0.0) || !std::isfinite(gap) || !(params.kappa_floor >= 0.0) || !positive(params.tolerance) ||
-        !(params.max_distance > 0.0))
+        !(params.max_distance > 0.0) || params.max_inserted < 0)
         throw InvalidInput("insert_input_points: the gap must be finite and not negative, the tolerance positive and "
-                           "finite, the largest distance positive and the kappa floor not negative");
+                           "finite, the largest distance positive, the kappa floor and most insertions not negative");
     if (!floors.empty() && floors.size() != points.size())
         throw InvalidInput("insert_input_points: " + std::to_string(floors.size()) + " floors for " +
                            std::to_string(points.size()) + " points");
@@ -377,7 +378,9 @@ HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& refere
     std::vector<size_t> todo(points.size());
     std::iota(todo.begin(), todo.end(), size_t{0});
     long tries = kMaxPointsTried;
-    while (!todo.empty() && tries > 0) stats.inserted += refinement.insert_points(points, floors, gap, todo, tries, stats.flipped);
+    while (!todo.empty() && tries > 0 && stats.inserted < params.max_inserted)
+        stats.inserted +=
+            refinement.insert_points(points, floors, gap, todo, tries, params.max_inserted - stats.inserted, stats.flipped);
     if (stats.inserted > 0) refinement.write_to(mesh);
     return stats;
 }

@@ -19,7 +19,8 @@
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
 // the tolerance; where a strongly curved part does not, the points inserted bring it closer too.
 // The same splits and flips insert given points of the input (insert_input_points): the
-// junctions of the creases that no vertex could move onto.
+// junctions of the creases that no vertex could move onto, and the bends the output's creases
+// cut across.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"
@@ -65,22 +66,23 @@ struct HausdorffRefinementStats {
 HausdorffRefinementStats refine_towards_input(Mesh& mesh, const Reference& input,
                                               const HausdorffRefinementParams& params);
 
-//! Inserts each of `points` (points of the input: the creases' junctions) that has no vertex of
-//! `mesh` within `gap` and lies no farther than params.max_distance from it, where it is nearest
-//! to the output, splitting as above. The split is followed by flips as above and, while the
-//! worst triangle it made is under params.kappa_floor, by at most three insertions of the
-//! input's point nearest to the middle of that triangle's longest edge (splitting the triangle
-//! or one of its edges, as above), each with its flips: a point a quarter of an edge from a
-//! vertex needs edges that short round it. The point stands if every triangle made is at least
-//! the floor; otherwise the mesh is left as it was. The points are taken in passes, farthest
-//! from a vertex first within each; one that an insertion came near (its triangles as near as
-//! the point's closest, or within `gap`) waits for the next pass, against the mesh as it is
-//! then. At most 64 points are tried in all (each try passes over the whole mesh). `floors`, if
+//! Inserts each of `points` (points of the input: the creases' junctions and bends) that has no
+//! vertex of `mesh` within `gap` and lies no farther than params.max_distance from it, where it
+//! is nearest to the output, splitting as above. The split is followed by flips as above and,
+//! while the worst triangle it made is under params.kappa_floor, by at most three insertions of
+//! the input's point nearest to the middle of that triangle's longest edge (splitting the
+//! triangle or one of its edges, as above), each with its flips: a point a quarter of an edge
+//! from a vertex needs edges that short round it. The point stands if every triangle made is at
+//! least the floor; otherwise the mesh is left as it was. The points are taken in passes,
+//! farthest from a vertex first within each; one that an insertion came near (its triangles as
+//! near as the point's closest, or within `gap`) waits for the next pass, against the mesh as
+//! it is then. At most 64 points are tried in all (each try passes over the whole mesh), and
+//! none once params.max_inserted vertices were added (a try may add up to four). `floors`, if
 //! not empty, gives each point the floor its try keeps instead of params.kappa_floor (for the
 //! flips too). The guarantees are refine_towards_input's; stats.inserted counts the vertices
 //! added. Throws InvalidInput for a gap that is negative or not finite, a tolerance or largest
-//! distance that is not positive, a negative floor, `floors` of another length than `points`,
-//! or an index out of range.
+//! distance that is not positive, a negative floor or max_inserted, `floors` of another length
+//! than `points`, or an index out of range.
 HausdorffRefinementStats insert_input_points(Mesh& mesh, const Reference& input,
                                              const std::vector<Eigen::Vector3d>& points, double gap,
                                              const HausdorffRefinementParams& params,
