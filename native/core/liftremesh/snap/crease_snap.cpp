@@ -280,13 +280,16 @@ std::vector<AcuteCreases::Bend> bends_off_mesh_creases(const Mesh& mesh, const A
                            "not negative and finite");
     std::vector<AcuteCreases::Bend> out;
     if (!(params.bend_distance > 0.0)) return out;
+    const std::vector<AcuteCreases::Bend> bends = creases.bends(params.bend_turn_deg);
+    if (bends.empty()) return out;
     // The mesh's own creases, as issue 35's check counts them.
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bent;
     for (const CreaseEdge& e : crease_edges(mesh, kMeshCreaseDeg))
         bent.emplace_back(mesh.points.row(e.a).transpose(), mesh.points.row(e.b).transpose());
-    const std::vector<AcuteCreases::Bend> bends = creases.bends(params.bend_turn_deg);
     if (bent.empty()) return bends;
-    const SegmentIndex index(bent, params.bend_distance);
+    // Sampled as sparsely as the snap's creases (AcuteCreases at half its radius): the index only
+    // narrows the search, the distances below decide.
+    const SegmentIndex index(bent, std::max(params.bend_distance, 0.5 * params.radius));
     std::vector<int32_t> near;
     for (const AcuteCreases::Bend& b : bends) {
         index.near(b.point, params.bend_distance, near);
