@@ -327,20 +327,29 @@ TEST(InsertInputPoints, APointsOwnFloorHoldsForItsTry) {
     EXPECT_TRUE(test::topology(m).oriented_manifold());
 }
 
+namespace {
+constexpr int kCells = 10;
+constexpr double kCell = 0.1;
+
+// A point in each cell of the kCells x kCells square, 0.3 of a cell from its lower corner on both
+// axes, the last one `last_at` of a cell.
+std::vector<Eigen::Vector3d> point_per_cell(double last_at) {
+    std::vector<Eigen::Vector3d> points;
+    for (int j = 0; j < kCells; ++j)
+        for (int i = 0; i < kCells; ++i) {
+            const bool last = i == kCells - 1 && j == kCells - 1;
+            points.push_back(Eigen::Vector3d(i, j, 0.0) * kCell + Eigen::Vector3d(1.0, 1.0, 0.0) * (last ? last_at : 0.3) * kCell);
+        }
+    return points;
+}
+} // namespace
+
 // A scan's creases can meet in thousands of junctions, and each point tried passes over the
 // whole mesh: 64 are tried, the farthest from a vertex first. A 10 x 10 square of cells has a
 // point in each, all but the last 0.04 from the cell's lower corner, the last at its centre.
 TEST(InsertInputPoints, TriesSixtyFourPointsFarthestFromAVertexFirst) {
-    constexpr int kCells = 10;
-    constexpr double kCell = 0.1;
     const Mesh square = test::make_square(kCells * kCell, kCells);
-    std::vector<Eigen::Vector3d> points;
-    for (int j = 0; j < kCells; ++j)
-        for (int i = 0; i < kCells; ++i) {
-            const Eigen::Vector3d corner(i * kCell, j * kCell, 0.0);
-            const bool last = i == kCells - 1 && j == kCells - 1;
-            points.push_back(corner + Eigen::Vector3d(1.0, 1.0, 0.0) * (last ? 0.5 * kCell : 0.3 * kCell));
-        }
+    const std::vector<Eigen::Vector3d> points = point_per_cell(0.5);
     Mesh m = square;
     const HausdorffRefinementStats stats =
         insert_input_points(m, test::OwnedReference(square), points, 0.02 * kCell, params_for(kCell));
@@ -355,17 +364,12 @@ TEST(InsertInputPoints, TriesSixtyFourPointsFarthestFromAVertexFirst) {
 // And none once params.max_inserted vertices were added: the creases' bends may be many, and
 // the vertices asked for stay the budget (steps.cpp: 1% of them).
 TEST(InsertInputPoints, StopsOnceTheMostInsertionsWereMade) {
-    constexpr int kCells = 10;
-    constexpr double kCell = 0.1;
     const Mesh square = test::make_square(kCells * kCell, kCells);
-    std::vector<Eigen::Vector3d> points;
-    for (int j = 0; j < kCells; ++j)
-        for (int i = 0; i < kCells; ++i) points.emplace_back((i + 0.3) * kCell, (j + 0.3) * kCell, 0.0);
     for (const long most : {0L, 1L, 10L}) {
         Mesh m = square;
         HausdorffRefinementParams p = params_for(kCell);
         p.max_inserted = most;
-        EXPECT_EQ(insert_input_points(m, test::OwnedReference(square), points, 0.02 * kCell, p).inserted, most);
+        EXPECT_EQ(insert_input_points(m, test::OwnedReference(square), point_per_cell(0.3), 0.02 * kCell, p).inserted, most);
         EXPECT_EQ(m.points.rows(), square.points.rows() + most);
         EXPECT_TRUE(test::topology(m).oriented_manifold());
     }
