@@ -176,10 +176,10 @@ class SharedMeshCreaseTest(BarChecks, unittest.TestCase):
     def test_lever_on_seeds_1_to_3(self):
         """Recall 0.989-0.990 on seeds 1-3 until the bends of its holes' rims (chords turning by
         20-40 degrees, the output's chords up to 0.2 h inside them) got vertices of their own
-        (crease_snap.h): 0.993 now. Of the misses left, most lie on the rims of the ring where two
-        differently faceted coaxial cylinders meet, a step up to 0.13 h wide that the output
-        meshes as the smooth cylinder it is; without its slivers' edges left out of the reference
-        recall is 0.96."""
+        (crease_snap.h): 0.992-0.993 now. Of the misses left, most lie on the rims of the ring
+        where two differently faceted coaxial cylinders meet, a step up to 0.13 h wide that the
+        output meshes as the smooth cylinder it is; without its slivers' edges left out of the
+        reference recall is 0.96."""
         for seed in (1, 2, 3):
             with self.subTest(seed=seed):
                 self.check_mesh("gmsh_lever.stl", seed=seed)

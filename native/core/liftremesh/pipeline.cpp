@@ -409,12 +409,14 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
         report.vertices_inserted += insert_input_points(out, reference, creases_over_angle.junctions(),
                                                         onto_creases.min_depth, steps.hausdorff_refinement, floors).inserted;
         // And a bend of a crease that the output's crease passes as a chord (crease_snap.h), under
-        // the refinement's floor (a hole's rim is no knife edge) and its 1% of the vertices.
+        // a floor of its own (quality_floors.h) and the refinement's 1% of the vertices.
         std::vector<Eigen::Vector3d> bends;
         for (const AcuteCreases::Bend& b : bends_off_mesh_creases(out, creases_over_angle, onto_creases))
             bends.push_back(b.point);
-        report.vertices_inserted += insert_input_points(out, reference, bends, onto_creases.bend_distance,
-                                                        steps.hausdorff_refinement).inserted;
+        HausdorffRefinementParams at_bends = steps.hausdorff_refinement;
+        at_bends.kappa_floor = kKappaFloorBend;
+        report.vertices_inserted +=
+            insert_input_points(out, reference, bends, onto_creases.bend_distance, at_bends).inserted;
     }
     clock.end();
 

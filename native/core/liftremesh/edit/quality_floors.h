@@ -18,6 +18,10 @@ inline constexpr double kKappaFloor = 0.3;
 //! snap/crease_snap.h): the surface there is near the input already, so only triangles as good
 //! as those the optimisation leaves are worth the move.
 inline constexpr double kKappaFloorOnInput = 0.45;
+//! Inserting a vertex at a bend of a crease that the output's crease passes as a chord
+//! (snap/crease_snap.h, pipeline.cpp): the crease is there already, cut short by a fraction of an
+//! edge, so the vertex is worth less than one the output lacks.
+inline constexpr double kKappaFloorBend = 0.5;
 //! Flipping a chord across a curved surface for the diagonal along it (polish/quality_polish.h):
 //! the chord is within the tolerance already, so the flip buys distance the output has to spare
 //! and may only leave triangles of the shape the optimisation gives most of them.
