@@ -135,12 +135,15 @@ RestrictedDelaunay restricted_delaunay(const LiftedSurface& surface, const Lifte
     std::vector<double> part_area(static_cast<size_t>(count), 0.0), cell_area(static_cast<size_t>(ns), 0.0);
     std::vector<Eigen::Vector3d> part_moment(static_cast<size_t>(count), Eigen::Vector3d::Zero());
     std::vector<int32_t> part_site(static_cast<size_t>(count), -1);
-    std::vector<Eigen::Vector3d> part_normal(static_cast<size_t>(count), Eigen::Vector3d::Zero()); // area-weighted
+    // Area-weighted, for the parts across a knife edge (below): only where rows of sites are held.
+    std::vector<Eigen::Vector3d> part_normal(params.held > 0 ? static_cast<size_t>(count) : 0, Eigen::Vector3d::Zero());
     auto corner3 = [&](long f, int j) -> Eigen::Vector3d { return surface.points.row(tri(f, j)).head<3>().transpose(); };
     for (int i = 0; i < np; ++i) {
         const int part = label[i];
-        const long f = pieces[i].triangle;
-        part_normal[part] += pieces[i].area * triangle_normal(corner3(f, 0), corner3(f, 1), corner3(f, 2));
+        if (params.held > 0) {
+            const long f = pieces[i].triangle;
+            part_normal[part] += pieces[i].area * triangle_normal(corner3(f, 0), corner3(f, 1), corner3(f, 2));
+        }
         part_area[part] += pieces[i].area;
         part_moment[part] += pieces[i].area * pieces[i].centroid;
         part_site[part] = pieces[i].site;
