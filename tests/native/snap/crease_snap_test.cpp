@@ -146,17 +146,17 @@ TEST(AcuteCreases, EachJunctionHasItsSharpestCreasesTurn) {
     }
 }
 
-// A prism on a regular 16-gon of radius 1: its rims are chains of 90-degree creases turning by
-// 22.5 degrees at each vertex (a hole's rim as a CAD tessellation gives it); its sides, turning
-// by 22.5 degrees, are no creases at 30.
-Mesh sixteen_gon_prism() {
+// A prism 3 high on a regular polygon of radius 1, a corner on the x axis. On 16 sides its rims
+// are chains of 90-degree creases turning by 22.5 degrees at each vertex (a hole's rim as a CAD
+// tessellation gives it); its sides, turning by 22.5 degrees, are no creases at 30.
+Mesh regular_prism(int sides) {
     std::vector<Eigen::Vector2d> polygon;
-    for (int i = 0; i < 16; ++i) polygon.emplace_back(std::cos(i * kPi / 8.0), std::sin(i * kPi / 8.0));
+    for (int i = 0; i < sides; ++i) polygon.emplace_back(std::cos(2.0 * kPi * i / sides), std::sin(2.0 * kPi * i / sides));
     return test::make_prism(polygon, 3.0);
 }
 
 TEST(AcuteCreases, BendsAreTheInnerVerticesWhereAChainTurns) {
-    const AcuteCreases prism(sixteen_gon_prism(), 30.0, 0.1);
+    const AcuteCreases prism(regular_prism(16), 30.0, 0.1);
     const std::vector<AcuteCreases::Bend> bends = prism.bends(10.0);
     ASSERT_EQ(bends.size(), 32u);
     for (const AcuteCreases::Bend& b : bends) {
@@ -175,10 +175,8 @@ TEST(AcuteCreases, BendsAreTheInnerVerticesWhereAChainTurns) {
 // pass 1 - cos(22.5 deg) = 0.076 inside the sixteen-gon's odd corners, and its sides (turning
 // by 45 degrees) 0.39 from them.
 TEST(CreaseSnap, ListsTheBendsTheMeshsCreasesCutAcross) {
-    const Mesh input = sixteen_gon_prism();
-    std::vector<Eigen::Vector2d> octagon;
-    for (int i = 0; i < 8; ++i) octagon.emplace_back(std::cos(i * kPi / 4.0), std::sin(i * kPi / 4.0));
-    const Mesh octagonal = test::make_prism(octagon, 3.0);
+    const Mesh input = regular_prism(16);
+    const Mesh octagonal = regular_prism(8);
     const AcuteCreases creases(input, 30.0, 0.1);
     CreaseSnapParams p = params_for(0.5);
     p.bend_distance = 0.07;
