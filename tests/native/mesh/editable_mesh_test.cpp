@@ -63,6 +63,30 @@ TEST(EditableMesh, UsesAroundFlaggedVerticesAreThoseOfTheWholeMeshThere) {
     }
 }
 
+// What the flips round an edit read: the fan of every corner of every quad with a flagged
+// triangle, as the whole mesh's fans have it; and far from the edit, nothing.
+TEST(EditableMesh, FansAroundFlaggedTrianglesAreThoseOfTheWholeMeshAtTheirQuads) {
+    EditableMesh m(test::make_cube(0.5, 4));
+    const CompressedRows all = m.fans();
+    std::vector<char> around(m.tris.size(), 0);
+    around[5] = around[40] = 1;
+    const CompressedRows near = m.fans_around(around);
+    auto row = [](const CompressedRows& rows, int32_t v) { return std::vector<int32_t>(rows.begin(v), rows.end(v)); };
+    std::vector<char> corner(m.points.size(), 0);
+    for (const auto& [key, uses] : m.edge_uses()) {
+        const auto quad = m.quad_of(uses);
+        if (!quad || !(around[quad->t1] || around[quad->t2])) continue;
+        for (const int32_t v : {quad->a, quad->b, quad->c, quad->d}) corner[v] = 1;
+    }
+    long empty = 0;
+    for (int32_t v = 0; v < static_cast<int32_t>(m.points.size()); ++v) {
+        if (corner[v]) EXPECT_EQ(row(near, v), row(all, v)) << "point " << v;
+        if (near.begin(v) == near.end(v)) ++empty;
+        else EXPECT_EQ(row(near, v), row(all, v)) << "point " << v; // a row given is whole
+    }
+    EXPECT_GT(empty, static_cast<long>(m.points.size()) / 2); // far from the two triangles
+}
+
 TEST(EditableMesh, QualityFlipOnlyForANearlyPlanarQuadThatGetsBetter) {
     // A thin rhombus split along its long diagonal: flipping to the short one is better.
     EditableMesh flat(test::make_mesh({{0, 0, 0}, {2, -0.3, 0}, {4, 0, 0}, {2, 0.3, 0}}, {{0, 1, 2}, {0, 2, 3}}));

@@ -135,6 +135,21 @@ CompressedRows EditableMesh::fans() const {
     return compress_rows(static_cast<long>(points.size()), pairs);
 }
 
+CompressedRows EditableMesh::fans_around(const std::vector<char>& around) const {
+    std::vector<char> corner(points.size(), 0), listed(points.size(), 0);
+    for (size_t t = 0; t < tris.size() && t < around.size(); ++t)
+        if (around[t])
+            for (int32_t v : tris[t]) corner[v] = 1;
+    for (const Tri& x : tris)
+        if (corner[x[0]] || corner[x[1]] || corner[x[2]])
+            for (int32_t v : x) listed[v] = 1;
+    std::vector<std::pair<int32_t, int32_t>> pairs;
+    for (size_t t = 0; t < tris.size(); ++t)
+        for (int32_t v : tris[t])
+            if (listed[v]) pairs.emplace_back(v, static_cast<int32_t>(t));
+    return compress_rows(static_cast<long>(points.size()), pairs);
+}
+
 std::vector<char> EditableMesh::border_points() const {
     std::vector<char> border(points.size(), 0);
     for (const auto& [key, use] : edge_uses())

@@ -55,6 +55,11 @@ public:
     std::optional<Quad> quad_of(const Uses& uses) const;
     //! Each point's triangles (its fan), in triangle order.
     CompressedRows fans() const;
+    //! The fans of the corners of the triangles that share a point with one flagged in `around`
+    //! (#tris flags), as fans() gives them; the other rows empty. Every corner of a quad with a
+    //! flagged triangle has its whole fan here; three scans of the triangles, but the pairs
+    //! sorted into rows are those of the edits' neighbourhood, not of the mesh.
+    CompressedRows fans_around(const std::vector<char>& around) const;
     //! A flag per point: an end of an edge without exactly two triangles.
     std::vector<char> border_points() const;
 

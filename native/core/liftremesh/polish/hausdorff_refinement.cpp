@@ -150,7 +150,7 @@ public:
     long flip_near_insertions(double floor) {
         long flipped = 0;
         for (int pass = 0; pass < 5; ++pass) {
-            fans_ = mesh_.fans();
+            fans_ = mesh_.fans_around(near_); // should_flip's quads all have a triangle there
             std::vector<char> changed;
             const long flips =
                 mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q, floor); }, changed);
@@ -325,7 +325,7 @@ private:
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
     std::vector<char> near_;      // per triangle: made or changed this round
-    CompressedRows fans_;         // per point, its triangles at the start of the flip pass
+    CompressedRows fans_;         // per point near near_, its triangles at the start of the flip pass
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
 };
 
