@@ -182,6 +182,59 @@ TEST_F(MeshIo, WeldExactMergesEqualCoordinatesInFirstOccurrenceOrder) {
     EXPECT_THROW(weld_exact(bad), InvalidInput);
 }
 
+// An STL soup's weld: every corner of every triangle its own point, each vertex repeated by the
+// triangles round it, many of them a bit or two apart in one coordinate; and 8192 points all
+// different, which fill the weld's table (the smallest power of two of at least twice the
+// points) to half. The welded vertices are the first occurrences, in their order, as a search of
+// the vertices kept so far gives them.
+TEST_F(MeshIo, WeldExactOfASoupIsTheFirstOccurrencesInTheirOrder) {
+    std::mt19937 rng(5);
+    std::vector<Eigen::RowVector3d> distinct;
+    for (int i = 0; i < 700; ++i) { // z a whole number or one or two ulps above it
+        double z = i / 21;
+        for (int ulp = 0; ulp < i % 3; ++ulp) z = std::nextafter(z, 1e9);
+        distinct.emplace_back(std::uniform_int_distribution<int>(0, 9)(rng), i % 7, z);
+    }
+    std::vector<Eigen::RowVector3d> soup;
+    std::vector<Eigen::RowVector3i> triangles;
+    for (int f = 0; f < 3000; ++f) {
+        Eigen::RowVector3i t;
+        for (int j = 0; j < 3; ++j) {
+            t[j] = static_cast<int>(soup.size());
+            soup.push_back(distinct[std::uniform_int_distribution<size_t>(0, distinct.size() - 1)(rng)]);
+        }
+        triangles.push_back(t);
+    }
+    Mesh m;
+    m.points.resize(static_cast<Eigen::Index>(soup.size()), 3);
+    for (size_t i = 0; i < soup.size(); ++i) m.points.row(static_cast<Eigen::Index>(i)) = soup[i];
+    m.triangles.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+    for (size_t f = 0; f < triangles.size(); ++f) m.triangles.row(static_cast<Eigen::Index>(f)) = triangles[f];
+    std::vector<Eigen::RowVector3d> first; // the reference: a linear search of those kept so far
+    std::vector<int> index_of(soup.size());
+    for (size_t i = 0; i < soup.size(); ++i) {
+        size_t k = 0;
+        while (k < first.size() && first[k] != soup[i]) ++k;
+        if (k == first.size()) first.push_back(soup[i]);
+        index_of[i] = static_cast<int>(k);
+    }
+    weld_exact(m);
+    ASSERT_EQ(m.points.rows(), static_cast<Eigen::Index>(first.size()));
+    for (size_t k = 0; k < first.size(); ++k) EXPECT_EQ(m.points.row(static_cast<Eigen::Index>(k)), first[k]);
+    for (size_t f = 0; f < triangles.size(); ++f)
+        for (int j = 0; j < 3; ++j) EXPECT_EQ(m.triangles(static_cast<Eigen::Index>(f), j), index_of[triangles[f][j]]);
+
+    Mesh apart;
+    apart.points = Points::Random(8192, 3);
+    apart.points.col(0) = Eigen::VectorXd::LinSpaced(8192, 0.0, 8191.0); // no two alike
+    apart.triangles.resize(8190, 3);
+    for (int f = 0; f < 8190; ++f) apart.triangles.row(f) = Eigen::RowVector3i(f, f + 1, f + 2);
+    const Mesh before = apart;
+    weld_exact(apart);
+    EXPECT_EQ(apart.points, before.points);
+    EXPECT_EQ(apart.triangles, before.triangles);
+}
+
 TEST_F(MeshIo, MalformedFilesThrowOneLineMessagesNamingTheFile) {
     expect_invalid(path("missing.stl"), "cannot open");
     expect_invalid(path("missing.stl"), "No such file or directory");

@@ -16,7 +16,6 @@
 #include <limits>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 namespace liftremesh {
@@ -101,7 +100,8 @@ private:
 void split(std::string_view line, std::vector<std::string_view>& tokens) {
     tokens.clear();
     size_t i = 0;
-    auto blank = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+    // What std::isspace takes for a blank in the C locale, without its call per character.
+    auto blank = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
     while (i < line.size()) {
         while (i < line.size() && blank(line[i])) ++i;
         const size_t start = i;
@@ -533,14 +533,26 @@ void write_mesh(const std::string& path, const Mesh& mesh) {
 void weld_exact(Mesh& mesh) {
     check_indices(mesh, "weld_exact");
     const Eigen::Index n = mesh.points.rows();
-    std::unordered_map<PointKey, int32_t, PointKeyHash> first_of;
-    first_of.reserve(static_cast<size_t>(n));
-    std::vector<int32_t> remap(static_cast<size_t>(n));
+    // The welded vertices in a table at most half full, by open addressing: each in the first
+    // free slot from its key's hash on, where probing from that hash finds it. An STL soup has
+    // three points a triangle, for which a map would allocate a node each.
+    size_t slots = 16;
+    while (slots < 2 * static_cast<size_t>(n)) slots *= 2;
+    std::vector<int32_t> table(slots, -1);
+    std::vector<PointKey> keys;     // of the welded vertices
     std::vector<Eigen::Index> kept; // representative (first occurrence) of each welded vertex
+    std::vector<int32_t> remap(static_cast<size_t>(n));
+    const PointKeyHash hash;
     for (Eigen::Index i = 0; i < n; ++i) {
-        const auto [it, inserted] = first_of.emplace(point_key(mesh.points, i), static_cast<int32_t>(kept.size()));
-        if (inserted) kept.push_back(i);
-        remap[i] = it->second;
+        const PointKey key = point_key(mesh.points, i);
+        size_t slot = hash(key) & (slots - 1);
+        while (table[slot] >= 0 && keys[table[slot]] != key) slot = (slot + 1) & (slots - 1);
+        if (table[slot] < 0) {
+            table[slot] = static_cast<int32_t>(kept.size());
+            kept.push_back(i);
+            keys.push_back(key);
+        }
+        remap[i] = table[slot];
     }
     Points points(static_cast<Eigen::Index>(kept.size()), 3);
     for (size_t j = 0; j < kept.size(); ++j) points.row(static_cast<Eigen::Index>(j)) = mesh.points.row(kept[j]);
