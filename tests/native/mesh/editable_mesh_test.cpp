@@ -13,6 +13,13 @@ namespace {
 Mesh square() {
     return test::make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
 }
+
+// n flags, those at `set` up.
+std::vector<char> flags(size_t n, std::initializer_list<size_t> set) {
+    std::vector<char> out(n, 0);
+    for (const size_t i : set) out[i] = 1;
+    return out;
+}
 } // namespace
 
 TEST(EditableMesh, QuadOfTheDiagonalThenFlipAndSplitKeepOrientation) {
@@ -48,8 +55,7 @@ TEST(EditableMesh, QuadOfTheDiagonalThenFlipAndSplitKeepOrientation) {
 TEST(EditableMesh, UsesAroundFlaggedVerticesAreThoseOfTheWholeMeshThere) {
     EditableMesh m(test::make_cube(0.5, 4));
     const auto all = m.edge_uses();
-    std::vector<char> flagged(m.points.size(), 0);
-    flagged[7] = flagged[30] = 1;
+    const std::vector<char> flagged = flags(m.points.size(), {7, 30});
     const auto around = m.edge_uses_around(flagged);
     ASSERT_FALSE(around.empty());
     for (const auto& [key, uses] : all) {
@@ -68,8 +74,7 @@ TEST(EditableMesh, UsesAroundFlaggedVerticesAreThoseOfTheWholeMeshThere) {
 TEST(EditableMesh, FansAroundFlaggedTrianglesAreThoseOfTheWholeMeshAtTheirQuads) {
     EditableMesh m(test::make_cube(0.5, 4));
     const CompressedRows all = m.fans();
-    std::vector<char> around(m.tris.size(), 0);
-    around[5] = around[40] = 1;
+    const std::vector<char> around = flags(m.tris.size(), {5, 40});
     const CompressedRows near = m.fans_around(around);
     auto row = [](const CompressedRows& rows, int32_t v) { return std::vector<int32_t>(rows.begin(v), rows.end(v)); };
     std::vector<char> corner(m.points.size(), 0);
