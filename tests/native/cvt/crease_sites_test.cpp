@@ -103,6 +103,37 @@ TEST(CreaseSites, ACreaseNearerThanHalfTheSpacingToOneTakenGetsNoRow) {
     EXPECT_THROW(CreaseSites(surface, row(4), 16, params), InvalidInput);
 }
 
+// Past the budget's share for creases, the corners fit, and the parts of two chains that bound a
+// strip narrower than the cells are held with them. On the unit square cut 40 x 40, seven rows
+// of grid edges along x taken as creases: 150 sites give a spacing of 0.088, so the rows cut in
+// 11 pieces are 84 sites, over a quarter of the budget (37), and their 14 ends are not. Rows 20
+// and 22 lie 0.05 (0.57 spacings) apart: their sites two spacings or more from an end (8 a row)
+// are held; the other rows lie 0.15 or more from any other.
+TEST(CreaseSites, TheCrowdedPartsOfTheChainsAreHeldWithTheCorners) {
+    const int cuts = 40;
+    const Mesh square = test::make_square(1.0, cuts);
+    const LiftedSurface surface = make_lifted_surface(square.points, square.triangles);
+    std::vector<CreaseEdge> creases;
+    for (const int j : {0, 6, 12, 20, 22, 30, 36})
+        for (int i = 0; i < cuts; ++i) {
+            const int32_t a = j * (cuts + 1) + i;
+            creases.push_back({a, a + 1, -1, -1, 90.0});
+        }
+    const long sites = 150;
+    const CreaseSites held(surface, creases, sites);
+    ASSERT_EQ(held.held().rows(), 14 + 16);
+    const double y20 = square.points(20 * (cuts + 1), 1), y22 = square.points(22 * (cuts + 1), 1);
+    for (Eigen::Index k = 14; k < held.held().rows(); ++k) {
+        const double y = held.held()(k, 1);
+        EXPECT_TRUE(y == y20 || y == y22) << k;
+    }
+    CreaseSitesParams corners_only;
+    corners_only.crowded = 0.0;
+    EXPECT_EQ(CreaseSites(surface, creases, sites, corners_only).held().rows(), 14);
+    corners_only.crowded = -1.0;
+    EXPECT_THROW(CreaseSites(surface, creases, sites, corners_only), InvalidInput);
+}
+
 // The free sites keep the clearance from every crease (at right angles: half the spacing), and
 // are random_sites' draw otherwise: as many, on the surface.
 TEST(CreaseSites, FreeSitesKeepTheirClearanceFromTheCreases) {

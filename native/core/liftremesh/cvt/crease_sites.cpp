@@ -57,9 +57,9 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
                          long sites, const CreaseSitesParams& params)
     : creases_(creases), params_(params) {
     if (!(params_.min_separation >= 0.0) || !(params_.max_fraction >= 0.0 && params_.max_fraction <= 1.0) ||
-        !(params_.clearance >= 0.0))
-        throw InvalidInput("crease_sites: the separation and clearance must not be negative, the fraction held "
-                           "must be between 0 and 1");
+        !(params_.clearance >= 0.0) || !(params_.crowded >= 0.0))
+        throw InvalidInput("crease_sites: the separation, clearance and crowding must not be negative, the "
+                           "fraction held must be between 0 and 1");
     const Eigen::Index nv = surface.points.rows();
     const int d = surface.dimension();
     auto xyz = [&surface](int32_t v) -> Eigen::Vector3d { return surface.points.row(v).leftCols<3>().transpose(); };
@@ -101,7 +101,15 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     for (const auto& [v, out] : next)
         if (out.size() != 2) candidates.push_back(at(v));
     const size_t corners = candidates.size();
+    std::vector<int32_t> chain_of(corners, -1); // per candidate; -1 for the corners
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> chain_edges;
+    std::vector<int32_t> chain_of_edge;
     for (const std::vector<int32_t>& chain : crease_chains(next)) {
+        const auto chain_index = static_cast<int32_t>(chain_of_edge.empty() ? 0 : chain_of_edge.back() + 1);
+        for (size_t i = 1; i < chain.size(); ++i) {
+            chain_edges.emplace_back(xyz(chain[i - 1]), xyz(chain[i]));
+            chain_of_edge.push_back(chain_index);
+        }
         // Length along the chain in local spacings, tau; n pieces of equal tau.
         std::vector<double> tau{0.0};
         for (size_t i = 1; i < chain.size(); ++i) {
@@ -119,6 +127,7 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
             const double t = span > 0.0 ? std::clamp((target - tau[i]) / span, 0.0, 1.0) : 0.0;
             const Candidate a = at(chain[i]), b = at(chain[i + 1]);
             candidates.push_back({(1.0 - t) * a.lifted + t * b.lifted, (1.0 - t) * a.spacing + t * b.spacing});
+            chain_of.push_back(chain_index);
         }
     }
 
@@ -144,12 +153,48 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     std::vector<Eigen::Index> rows;
     for (size_t c = 0; c < last; ++c)
         if (taken[c]) rows.push_back(static_cast<Eigen::Index>(c));
+    if (last == corners && corners < candidates.size() && params_.crowded > 0.0) {
+        // The chains' crowded parts (CreaseSitesParams::crowded), if they fit with the corners.
+        std::vector<Eigen::Index> crowded;
+        const SegmentIndex index(chain_edges, 0.25 * smallest);
+        std::optional<KdTree> corner_tree;
+        if (corners > 0) corner_tree.emplace(where.topRows(static_cast<Eigen::Index>(corners)));
+        std::vector<int32_t> near_edges;
+        for (size_t c = corners; c < candidates.size(); ++c) {
+            if (!taken[c]) continue;
+            const Eigen::Vector3d p = where.row(static_cast<Eigen::Index>(c)).transpose();
+            const double spacing = candidates[c].spacing, reach = params_.crowded * spacing;
+            const auto corner = static_cast<Eigen::Index>(corner_tree ? corner_tree->nearest(p.data()) : -1);
+            if (corner >= 0 && (where.row(corner).transpose() - p).norm() < 2.0 * spacing) continue;
+            index.near(p, reach, near_edges);
+            if (std::any_of(near_edges.begin(), near_edges.end(), [&](int32_t e) {
+                    const auto& [a, b] = chain_edges[e];
+                    return chain_of_edge[e] != chain_of[c] && (closest_point_on_segment(p, a, b) - p).norm() < reach;
+                }))
+                crowded.push_back(static_cast<Eigen::Index>(c));
+        }
+        // A lone crowded candidate is where two chains meet at a narrow angle near a corner (a
+        // knife edge's tip), whose strip is shorter than a cell: held, its site leaves thin
+        // triangles at the tip. A strip along two or more is held.
+        std::vector<Eigen::Index> runs;
+        for (size_t i = 0; i < crowded.size();) {
+            size_t j = i + 1;
+            while (j < crowded.size() && crowded[j] == crowded[j - 1] + 1 && chain_of[crowded[j]] == chain_of[crowded[i]])
+                ++j;
+            if (j - i >= 2)
+                for (; i < j; ++i) runs.push_back(crowded[i]);
+            i = j;
+        }
+        crowded.swap(runs);
+        if (static_cast<double>(rows.size() + crowded.size()) <= most)
+            rows.insert(rows.end(), crowded.begin(), crowded.end());
+    }
     held_.resize(static_cast<Eigen::Index>(rows.size()), d);
     for (size_t r = 0; r < rows.size(); ++r) held_.row(static_cast<Eigen::Index>(r)) = candidates[rows[r]].lifted;
     rows_held_ = last == candidates.size() && last > corners;
-    // With the corners alone held (a part all creases, as a thread), the free sites are still
-    // kept off the creases: the snap after the triangulation (crease_snap.h) then finds the
-    // vertices next to a crease far enough from it that its moves keep their triangles whole.
+    // With no whole chain held (a part all creases, as a thread), the free sites are still kept
+    // off the creases: the snap after the triangulation (crease_snap.h) then finds the vertices
+    // next to a crease far enough from it that its moves keep their triangles whole.
     if (held_.rows() == 0) return;
 
     // The crease edges for crowds(), in 3D (sampled a quarter of the smallest spacing apart)

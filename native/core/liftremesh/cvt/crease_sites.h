@@ -33,6 +33,13 @@ struct CreaseSitesParams {
     //! At most this fraction of the sites is held: past it, the corners alone, and past it
     //! again, none (a part whose creases the budget cannot follow). In [0, 1].
     double max_fraction = 0.25;
+    //! When the corners alone fit in max_fraction, the parts of chains nearer than this times
+    //! the spacing to another chain are held with them, within the fraction: there two creases
+    //! bound a strip narrower than the cells (a thread's crest running out into its end face),
+    //! which the snap cannot give a vertex on each side without folding it. None within two
+    //! spacings of a corner, where every chain is near the others. 0 holds the corners alone.
+    //! Not negative.
+    double crowded = 0.8;
     //! Free sites closer than this times the spacing to a crease crowd it (free_sites,
     //! reseat_crowding_sites); to a crease whose faces meet at an interior angle alpha under 90
     //! degrees, closer than this over sin(alpha), at most twice this: a site there is nearer to
@@ -50,7 +57,8 @@ public:
                 const CreaseSitesParams& params = {});
 
     //! The held sites (rows, lifted like the surface's points): corners (vertices with other
-    //! than two crease edges) first, by vertex index, then the chains'.
+    //! than two crease edges) first, by vertex index, then the chains' (their crowded parts
+    //! only, when the chains do not all fit: see CreaseSitesParams::crowded).
     const LiftedPoints& held() const { return held_; }
     //! Whether sites are held along the creases' chains, not only on their corners.
     bool rows_held() const { return rows_held_; }
