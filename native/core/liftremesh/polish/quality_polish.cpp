@@ -110,6 +110,8 @@ public:
         for (const EditableMesh::Tri& t : mesh_.tris)
             if (mesh_.kappa(t) < params_.relax_below)
                 for (int32_t v : t) candidate[v] = !on_border_[v];
+        for (size_t v = 0; v < nv; ++v)
+            if (!candidate[v] && !on_border_[v] && fan_has_turned(static_cast<int32_t>(v))) candidate[v] = 1;
         long count = 0;
         for (size_t v = 0; v < nv; ++v)
             if (candidate[v] && relax(static_cast<int32_t>(v))) {
@@ -132,6 +134,22 @@ private:
         return worst;
     }
 
+    // Whether a triangle of v's fan faces against the others, lying in their plane (turned over
+    // on it: the triangles overlap).
+    bool fan_has_turned(int32_t v) const {
+        Eigen::Vector3d plane = Eigen::Vector3d::Zero();
+        for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t) plane += mesh_.normal(mesh_.tris[*t]).normalized();
+        if (!(plane.norm() > 0.0)) return false;
+        plane.normalize();
+        for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t)
+            if (turned(mesh_.normal(mesh_.tris[*t]).normalized().dot(plane))) return true;
+        return false;
+    }
+
+    // A normal at this cosine to the fan's plane is turned over onto it (not within the flat
+    // angle of it, but of its opposite).
+    bool turned(double along) const { return !(along >= cos_flat_) && along <= -cos_flat_; }
+
     bool relax(int32_t v) {
         const Eigen::Vector3d p = mesh_.points[v];
         std::vector<Eigen::Vector3d> was;
@@ -142,8 +160,14 @@ private:
         }
         if (was.size() < 3 || !(plane.norm() > 0.0)) return false;
         plane.normalize();
-        for (const Eigen::Vector3d& n : was)
-            if (!(n.normalized().dot(plane) >= cos_flat_)) return false; // a crease or a strong bend (or NaN)
+        // A triangle turned over in the fan's plane (fan_has_turned) must come out facing as the
+        // others do: its normal is expected along the plane's, and until it does, the fan's worst
+        // is below every kappa (fan_worst).
+        for (Eigen::Vector3d& n : was) {
+            const double along = n.normalized().dot(plane);
+            if (turned(along)) n = plane * n.norm();
+            else if (!(along >= cos_flat_)) return false; // a crease or a strong bend (or NaN)
+        }
         auto in_plane = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return d - plane * d.dot(plane); };
 
         std::vector<Eigen::Vector3d> targets;

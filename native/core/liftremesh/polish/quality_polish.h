@@ -30,7 +30,11 @@
 // - relaxation: a vertex of a triangle below `relax_below`, inside the surface (no boundary
 //   edge) and on a flat fan (its triangles within `flat_angle_deg` of their mean normal: not on
 //   a crease), moves to whichever of a few targets on the input raises the worst kappa of its
-//   fan most, if any does and no triangle of the fan turns by more than 30 degrees; the targets
+//   fan most, if any does and no triangle of the fan turns by more than 30 degrees. So does a
+//   vertex of a triangle turned over onto the fan (within `flat_angle_deg` of the opposite of
+//   the mean normal: it overlaps its neighbours, however well shaped, and the repair counts its
+//   edges folded shut), but its move must turn that triangle back within 30 degrees of the
+//   mean normal; the targets
 //   are the centroid of its neighbours moved within the fan's plane, and points a quarter, half
 //   and three quarters of the way to the apex of the equilateral triangle on the far edge of
 //   each of its bad triangles, each then put on the input (closest point);
