@@ -292,6 +292,15 @@ TEST(QualityPolish, ATriangleTurnedOverOnAFlatPartIsTurnedBack) {
     EXPECT_EQ(test::facing_inward(m, {2, 2, -1}), 0);
     EXPECT_GT(test::min_kappa(m), 0.5);
     EXPECT_EQ(m.points.col(2).cwiseAbs().maxCoeff(), 0.0);
+    // Against an input facing down, the triangle facing down is the one that faces as it should:
+    // the others are not turned over to it.
+    Mesh down = test::make_square(4.0, 4);
+    down.triangles.col(1).swap(down.triangles.col(2));
+    Mesh pushed = test::make_square(4.0, 4);
+    pushed.points.row(12) << 3.3, 2.4, 0.0;
+    const long facing_down = test::facing_inward(pushed, {2, 2, -1});
+    polish_quality(pushed, test::OwnedReference(down), no_flips);
+    EXPECT_EQ(test::facing_inward(pushed, {2, 2, -1}), facing_down);
 }
 
 TEST(QualityPolish, AVertexOnACreaseIsNotMoved) {

@@ -163,10 +163,30 @@ private:
         // A triangle turned over in the fan's plane (fan_has_turned) must come out facing as the
         // others do: its normal is expected along the plane's, and until it does, the fan's worst
         // is below every kappa (fan_worst).
+        bool any_turned = false;
         for (Eigen::Vector3d& n : was) {
             const double along = n.normalized().dot(plane);
-            if (turned(along)) n = plane * n.norm();
-            else if (!(along >= cos_flat_)) return false; // a crease or a strong bend (or NaN)
+            if (turned(along)) {
+                n = plane * n.norm();
+                any_turned = true;
+            } else if (!(along >= cos_flat_)) {
+                return false; // a crease or a strong bend (or NaN)
+            }
+        }
+        // The triangles turned over are those facing against the input, not the others: the
+        // input faces the plane's way at most of the others' centroids (at a vertex itself, on a
+        // crease, the nearest input triangle may lie on the other face).
+        if (any_turned) {
+            int agree = 0, others = 0;
+            for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t) {
+                const EditableMesh::Tri& tri = mesh_.tris[*t];
+                if (turned(mesh_.normal(tri).normalized().dot(plane))) continue;
+                ++others;
+                const Eigen::Vector3d centroid = (mesh_.points[tri[0]] + mesh_.points[tri[1]] + mesh_.points[tri[2]]);
+                const int32_t under = input_.closest(centroid / 3.0).triangle;
+                agree += under >= 0 && input_.triangle_normal(under).dot(plane) > 0.0;
+            }
+            if (!(2 * agree > others)) return false;
         }
         auto in_plane = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return d - plane * d.dot(plane); };
 
