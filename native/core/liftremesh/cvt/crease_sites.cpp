@@ -104,8 +104,9 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     std::vector<int32_t> chain_of(corners, -1); // per candidate; -1 for the corners
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> chain_edges;
     std::vector<int32_t> chain_of_edge;
+    int32_t chain_index = -1;
     for (const std::vector<int32_t>& chain : crease_chains(next)) {
-        const auto chain_index = static_cast<int32_t>(chain_of_edge.empty() ? 0 : chain_of_edge.back() + 1);
+        ++chain_index;
         for (size_t i = 1; i < chain.size(); ++i) {
             chain_edges.emplace_back(xyz(chain[i - 1]), xyz(chain[i]));
             chain_of_edge.push_back(chain_index);

@@ -37,8 +37,9 @@ struct CreaseSitesParams {
     //! the spacing to another chain are held with them, within the fraction: there two creases
     //! bound a strip narrower than the cells (a thread's crest running out into its end face),
     //! which the snap cannot give a vertex on each side without folding it. None within two
-    //! spacings of a corner, where every chain is near the others. 0 holds the corners alone.
-    //! Not negative.
+    //! spacings of a corner, where every chain is near the others, and none alone on its chain
+    //! (two creases parting at a narrow angle, a knife's tip): runs of two or more. 0 holds the
+    //! corners alone. Not negative.
     double crowded = 0.8;
     //! Free sites closer than this times the spacing to a crease crowd it (free_sites,
     //! reseat_crowding_sites); to a crease whose faces meet at an interior angle alpha under 90

@@ -182,8 +182,9 @@ private:
                 const EditableMesh::Tri& tri = mesh_.tris[*t];
                 if (turned(mesh_.normal(tri).normalized().dot(plane))) continue;
                 ++others;
-                const Eigen::Vector3d centroid = (mesh_.points[tri[0]] + mesh_.points[tri[1]] + mesh_.points[tri[2]]);
-                const int32_t under = input_.closest(centroid / 3.0).triangle;
+                const Eigen::Vector3d centroid =
+                    (mesh_.points[tri[0]] + mesh_.points[tri[1]] + mesh_.points[tri[2]]) / 3.0;
+                const int32_t under = input_.closest(centroid).triangle;
                 agree += under >= 0 && input_.triangle_normal(under).dot(plane) > 0.0;
             }
             if (!(2 * agree > others)) return false;
