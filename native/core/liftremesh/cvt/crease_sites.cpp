@@ -102,15 +102,11 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
         if (out.size() != 2) candidates.push_back(at(v));
     const size_t corners = candidates.size();
     std::vector<int32_t> chain_of(corners, -1); // per candidate; -1 for the corners
-    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> chain_edges;
-    std::vector<int32_t> chain_of_edge;
+    std::map<std::pair<int32_t, int32_t>, int32_t> chain_of_pair; // per crease edge's ends
     int32_t chain_index = -1;
     for (const std::vector<int32_t>& chain : crease_chains(next)) {
         ++chain_index;
-        for (size_t i = 1; i < chain.size(); ++i) {
-            chain_edges.emplace_back(xyz(chain[i - 1]), xyz(chain[i]));
-            chain_of_edge.push_back(chain_index);
-        }
+        for (size_t i = 1; i < chain.size(); ++i) chain_of_pair[std::minmax(chain[i - 1], chain[i])] = chain_index;
         // Length along the chain in local spacings, tau; n pieces of equal tau.
         std::vector<double> tau{0.0};
         for (size_t i = 1; i < chain.size(); ++i) {
@@ -154,10 +150,19 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     std::vector<Eigen::Index> rows;
     for (size_t c = 0; c < last; ++c)
         if (taken[c]) rows.push_back(static_cast<Eigen::Index>(c));
+    // The crease edges in 3D, indexed (sampled a quarter of the smallest spacing apart) for the
+    // crowded parts below and for crowds() once a site is held.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+    for (const CreaseEdge& e : creases_) segments.emplace_back(xyz(e.a), xyz(e.b));
     if (last == corners && corners < candidates.size() && params_.crowded > 0.0) {
         // The chains' crowded parts (CreaseSitesParams::crowded), if they fit with the corners.
+        std::vector<int32_t> chain_of_crease;
+        for (const CreaseEdge& e : creases_) {
+            const auto found = chain_of_pair.find(std::minmax(e.a, e.b));
+            chain_of_crease.push_back(found == chain_of_pair.end() ? -1 : found->second);
+        }
         std::vector<Eigen::Index> crowded;
-        const SegmentIndex index(chain_edges, 0.25 * smallest);
+        const SegmentIndex& index = edges_.emplace(segments, 0.25 * smallest);
         std::optional<KdTree> corner_tree;
         if (corners > 0) corner_tree.emplace(where.topRows(static_cast<Eigen::Index>(corners)));
         std::vector<int32_t> near_edges;
@@ -169,8 +174,8 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
             if (corner >= 0 && (where.row(corner).transpose() - p).norm() < 2.0 * spacing) continue;
             index.near(p, reach, near_edges);
             if (std::any_of(near_edges.begin(), near_edges.end(), [&](int32_t e) {
-                    const auto& [a, b] = chain_edges[e];
-                    return chain_of_edge[e] != chain_of[c] && (closest_point_on_segment(p, a, b) - p).norm() < reach;
+                    const auto& [a, b] = segments[e];
+                    return chain_of_crease[e] != chain_of[c] && (closest_point_on_segment(p, a, b) - p).norm() < reach;
                 }))
                 crowded.push_back(static_cast<Eigen::Index>(c));
         }
@@ -196,16 +201,14 @@ CreaseSites::CreaseSites(const LiftedSurface& surface, const std::vector<CreaseE
     // With no whole chain held (a part all creases, as a thread), the free sites are still kept
     // off the creases: the snap after the triangulation (crease_snap.h) then finds the vertices
     // next to a crease far enough from it that its moves keep their triangles whole.
-    if (held_.rows() == 0) return;
-
-    // The crease edges for crowds(), in 3D (sampled a quarter of the smallest spacing apart)
-    // and lifted.
-    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
-    for (const CreaseEdge& e : creases_) {
-        segments.emplace_back(xyz(e.a), xyz(e.b));
-        lifted_ends_.emplace_back(surface.points.row(e.a), surface.points.row(e.b));
+    if (held_.rows() == 0) {
+        edges_.reset(); // nothing crowds a crease
+        return;
     }
-    edges_.emplace(segments, 0.25 * smallest);
+
+    // The crease edges for crowds(), indexed and lifted.
+    for (const CreaseEdge& e : creases_) lifted_ends_.emplace_back(surface.points.row(e.a), surface.points.row(e.b));
+    if (!edges_) edges_.emplace(segments, 0.25 * smallest);
     double widest = 0.0; // the largest clearance, at the most acute crease
     for (const CreaseEdge& e : creases_) widest = std::max(widest, clearance(e.turn_deg));
     reach_ = widest * largest;
