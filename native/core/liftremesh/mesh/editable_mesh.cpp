@@ -127,13 +127,17 @@ int32_t EditableMesh::split_edge(const Quad& q, const Eigen::Vector3d& p) {
     return m;
 }
 
-CompressedRows EditableMesh::fans() const {
+// The fans of the points `listed` flags (all of them without flags), in triangle order.
+CompressedRows EditableMesh::fans_of(const std::vector<char>* listed) const {
     std::vector<std::pair<int32_t, int32_t>> pairs;
-    pairs.reserve(3 * tris.size());
+    if (!listed) pairs.reserve(3 * tris.size());
     for (size_t t = 0; t < tris.size(); ++t)
-        for (int32_t v : tris[t]) pairs.emplace_back(v, static_cast<int32_t>(t));
+        for (int32_t v : tris[t])
+            if (!listed || (*listed)[v]) pairs.emplace_back(v, static_cast<int32_t>(t));
     return compress_rows(static_cast<long>(points.size()), pairs);
 }
+
+CompressedRows EditableMesh::fans() const { return fans_of(nullptr); }
 
 CompressedRows EditableMesh::fans_around(const std::vector<char>& around) const {
     std::vector<char> corner(points.size(), 0), listed(points.size(), 0);
@@ -143,11 +147,7 @@ CompressedRows EditableMesh::fans_around(const std::vector<char>& around) const 
     for (const Tri& x : tris)
         if (corner[x[0]] || corner[x[1]] || corner[x[2]])
             for (int32_t v : x) listed[v] = 1;
-    std::vector<std::pair<int32_t, int32_t>> pairs;
-    for (size_t t = 0; t < tris.size(); ++t)
-        for (int32_t v : tris[t])
-            if (listed[v]) pairs.emplace_back(v, static_cast<int32_t>(t));
-    return compress_rows(static_cast<long>(points.size()), pairs);
+    return fans_of(&listed);
 }
 
 std::vector<char> EditableMesh::border_points() const {

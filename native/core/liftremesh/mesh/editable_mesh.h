@@ -100,6 +100,9 @@ public:
     //! Writes the edits back into the mesh it was made from: its points replaced by `points`
     //! (moved ones moved, new ones appended), its triangles from `first` on by `tris`.
     void write_to(Mesh& mesh, Eigen::Index first = 0) const;
+
+private:
+    CompressedRows fans_of(const std::vector<char>* listed) const;
 };
 
 } // namespace liftremesh
