@@ -70,7 +70,8 @@ bool sleep_while_waiting() {
 // Large arrays in huge pages where the kernel gives them on request (transparent huge pages in
 // its "madvise" mode, Debian's default). A run on a million input triangles fills most of a
 // gigabyte of fresh memory, and its diagram reads rows scattered over a hundred megabytes at
-// every evaluation: in 4 KiB pages each first touch is a fault, and most reads miss the TLB.
+// every evaluation: in 4 KiB pages each first touch is a fault, and reads spread over more pages
+// than the TLB covers miss it.
 // glibc's malloc asks for huge pages with its tunable glibc.malloc.hugetlb=1, read once, before
 // main, as libgomp's policy is; a user's own setting of it stands. Returns whether it set it.
 bool use_huge_pages() {
