@@ -163,11 +163,14 @@ private:
         // A triangle turned over in the fan's plane (fan_has_turned) must come out facing as the
         // others do: its normal is expected along the plane's, and until it does, the fan's worst
         // is below every kappa (fan_worst).
+        std::vector<char> is_turned(was.size(), 0); // in the fan's order, as `was`
         bool any_turned = false;
-        for (Eigen::Vector3d& n : was) {
+        for (size_t i = 0; i < was.size(); ++i) {
+            Eigen::Vector3d& n = was[i];
             const double along = n.normalized().dot(plane);
             if (turned(along)) {
                 n = plane * n.norm();
+                is_turned[i] = 1;
                 any_turned = true;
             } else if (!(along >= cos_flat_)) {
                 return false; // a crease or a strong bend (or NaN)
@@ -178,9 +181,10 @@ private:
         // crease, the nearest input triangle may lie on the other face).
         if (any_turned) {
             int agree = 0, others = 0;
-            for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t) {
+            size_t i = 0;
+            for (const int32_t* t = fans_.begin(v); t != fans_.end(v); ++t, ++i) {
+                if (is_turned[i]) continue;
                 const EditableMesh::Tri& tri = mesh_.tris[*t];
-                if (turned(mesh_.normal(tri).normalized().dot(plane))) continue;
                 ++others;
                 const Eigen::Vector3d centroid =
                     (mesh_.points[tri[0]] + mesh_.points[tri[1]] + mesh_.points[tri[2]]) / 3.0;
