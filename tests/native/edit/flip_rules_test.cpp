@@ -1,5 +1,8 @@
-// The flip rules' guard against folds across a quad's rim (flip_rules.h: flip_folds_rim).
+// The flip rules' guard against folds across a quad's rim (flip_rules.h: flip_folds_rim), and
+// the count of folded edges the other edits' rules rest on.
 #include "liftremesh/edit/flip_rules.h"
+#include "liftremesh/mesh/compressed_rows.h"
+#include "liftremesh/mesh/geometry.h"
 #include "helpers.h"
 
 #include <gtest/gtest.h>
@@ -29,4 +32,30 @@ TEST(FlipRules, AFlipThatFoldsATriangleOntoItsRimNeighbourIsCaught) {
     EXPECT_FALSE(flip_folds({0.5, -1, 0}));
     // (a, c, e) folded onto (a, b, c) already (by 174 degrees): no new fold.
     EXPECT_FALSE(flip_folds({0.5, 1, 0.1}));
+}
+
+TEST(FlipRules, FoldedEdgesAreCountedOnceOnEitherKindOfMesh) {
+    // (a, c, e) folded onto (a, b, c) by 174 degrees along c-a: one edge, seen from both sides.
+    const Mesh m = test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, {0.5, 1, 0.1}},
+                                   {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}});
+    const EditableMesh mesh(m);
+    const CompressedRows fans = mesh.fans();
+    const TrianglesOf of = [&fans](int32_t v) { return std::make_pair(fans.begin(v), fans.end(v)); };
+    EXPECT_EQ(folded_edges_among(mesh, {0, 1, 2, 2}, of), 1);
+    EXPECT_EQ(folded_edges_among(mesh, {0, 1}, of), 1); // (a, b, c)'s edge c-a, found through the fans
+    EXPECT_EQ(folded_edges_among(mesh, {1}, of), 0);
+    auto corners = [&m](int32_t f) { return std::array<int32_t, 3>{m.triangles(f, 0), m.triangles(f, 1), m.triangles(f, 2)}; };
+    auto normal = [&m, &corners](int32_t f) {
+        const auto t = corners(f);
+        return triangle_normal(m.points.row(t[0]).transpose(), m.points.row(t[1]).transpose(), m.points.row(t[2]).transpose());
+    };
+    EXPECT_EQ(count_folded_edges(std::vector<int32_t>{2}, corners, normal, [&fans](int32_t v) { return fans.row(v); }), 1);
+    // Turned back by 165 degrees only: none.
+    const Mesh open = test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, {0.5, 0.966, 0.259}},
+                                      {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}});
+    const EditableMesh opened(open);
+    const CompressedRows open_fans = opened.fans();
+    EXPECT_EQ(folded_edges_among(opened, {0, 1, 2},
+                                 [&open_fans](int32_t v) { return std::make_pair(open_fans.begin(v), open_fans.end(v)); }),
+              0);
 }

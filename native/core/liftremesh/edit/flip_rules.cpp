@@ -48,26 +48,13 @@ bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, c
     return near.triangle >= 0 && n.dot(input.triangle_normal(near.triangle)) < kCosCap * n.norm();
 }
 
-namespace {
-bool folded(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v) < kCosFolded * u.norm() * v.norm(); }
-} // namespace
-
 int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, const TrianglesOf& triangles_of) {
-    std::vector<std::pair<int32_t, int32_t>> seen;
-    for (int t : tris) {
-        const Eigen::Vector3d n = mesh.normal(mesh.tris[t]);
-        for (int j = 0; j < 3; ++j) {
-            const int32_t a = mesh.tris[t][j], b = mesh.tris[t][(j + 1) % 3];
-            const auto [first, last] = triangles_of(a);
-            for (const int32_t* s = first; s != last; ++s) {
-                const EditableMesh::Tri& x = mesh.tris[*s];
-                if (*s == t || std::find(x.begin(), x.end(), b) == x.end()) continue;
-                if (folded(n, mesh.normal(x))) seen.emplace_back(std::min(a, b), std::max(a, b));
-            }
-        }
-    }
-    std::sort(seen.begin(), seen.end());
-    return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
+    return count_folded_edges(
+        tris, [&mesh](int t) { return mesh.tris[t]; }, [&mesh](int t) { return mesh.normal(mesh.tris[t]); },
+        [&triangles_of](int32_t v) {
+            const auto [first, last] = triangles_of(v);
+            return IndexRange{first, last};
+        });
 }
 
 bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {

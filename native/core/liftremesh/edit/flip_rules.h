@@ -10,6 +10,7 @@
 #include "liftremesh/mesh/editable_mesh.h"
 #include "liftremesh/spatial/aabb_tree.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <utility>
@@ -78,12 +79,39 @@ bool faces_against_input(const EditableMesh& mesh, const EditableMesh::Tri& t, c
 //! degrees, as the report counts folded edges (measure/quality.h).
 inline const double kCosFolded = std::cos(170.0 * M_PI / 180.0);
 
+//! Whether two triangles with normals u and v (of any length) on an edge are folded so.
+inline bool folded(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v) < kCosFolded * u.norm() * v.norm(); }
+
 //! A vertex's triangles: [first, second) of its indices.
 using TrianglesOf = std::function<std::pair<const int32_t*, const int32_t*>(int32_t)>;
 
 //! How many edges of the triangles `tris` (repeats allowed) are folded (kCosFolded), each
 //! counted once; `triangles_of` gives each vertex's triangles as the mesh has them now.
 int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, const TrianglesOf& triangles_of);
+
+//! The same on any triangle mesh, possibly one an edit has not made yet: `corners(t)` gives
+//! triangle t's three vertices, `normal(t)` its normal (of any length), and `triangles_of(v)`
+//! the triangles round vertex v (any range of indices) as the mesh would have them.
+template <class Tris, class Corners, class Normal, class TrianglesOfVertex>
+int count_folded_edges(const Tris& tris, const Corners& corners, const Normal& normal,
+                       const TrianglesOfVertex& triangles_of) {
+    std::vector<std::pair<int32_t, int32_t>> seen;
+    for (const auto t : tris) {
+        const auto c = corners(t);
+        const Eigen::Vector3d n = normal(t);
+        for (int j = 0; j < 3; ++j) {
+            const int32_t a = c[j], b = c[(j + 1) % 3];
+            for (const auto s : triangles_of(a)) {
+                if (s == t) continue;
+                const auto x = corners(s);
+                if (std::find(x.begin(), x.end(), b) == x.end()) continue;
+                if (folded(n, normal(s))) seen.emplace_back(std::min(a, b), std::max(a, b));
+            }
+        }
+    }
+    std::sort(seen.begin(), seen.end());
+    return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
+}
 
 //! Whether flipping the quad's edge folds one of the new triangles onto the triangle across
 //! the quad's rim (their normals turned by more than 170 degrees, as the report counts folded

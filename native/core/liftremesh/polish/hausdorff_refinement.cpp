@@ -60,6 +60,7 @@ public:
     long insert(const std::vector<Eigen::Vector3d>& samples, long allowed) {
         const std::vector<Witness> witnesses = find_witnesses(samples);
         near_.assign(mesh_.tris.size(), 0);
+        made_.clear();
         if (witnesses.empty()) return 0;
         std::vector<char> flagged(mesh_.points.size(), 0);
         for (const Witness& w : witnesses)
@@ -131,6 +132,7 @@ public:
             if (tries == 0 || static_cast<long>(mesh_.points.size() - vertices) >= budget) break;
             --tries;
             near_.assign(mesh_.tris.size(), 0);
+            made_.clear();
             EditableMesh before = mesh_;
             long flips = 0;
             if (!insert_and_mend(t, points[i], floors.empty() ? params_.kappa_floor : floors[i], flips)) {
@@ -278,17 +280,39 @@ private:
             const int32_t d = quad->t1 == t ? quad->d : quad->c; // opposite the edge in the other triangle
             splits.push_back({{{t, {a, m, c}}, {other, {b, m, d}}}, {{m, b, c}, {m, a, d}}});
         }
+        // The triangle across edge u-v from the split's, or -1: as `uses` lists it, unless that
+        // use is stale, when it is one made or changed since (made_).
+        auto across = [&](int32_t u, int32_t v, const Split& split) {
+            auto fits = [&](int x) {
+                const Tri& w = mesh_.tris[x];
+                return std::none_of(split.replace.begin(), split.replace.end(), [x](const auto& r) { return r.first == x; }) &&
+                       std::find(w.begin(), w.end(), u) != w.end() && std::find(w.begin(), w.end(), v) != w.end();
+            };
+            if (const auto found = uses.find(edge_key(u, v)); found != uses.end())
+                for (int i = 0; i < std::min(found->second.count, 2); ++i)
+                    if (fits(found->second[i].tri)) return found->second[i].tri;
+            for (const int x : made_)
+                if (fits(x)) return x;
+            return -1;
+        };
         mesh_.points.push_back(p); // so that normal() and kappa() see it; removed if nothing is split
         double best = -1.0;
         const Split* chosen = nullptr;
         for (const Split& split : splits) {
             // Each new triangle keeps the side of the one it comes from: the replaced one, or
-            // for an appended one the triangle it shares the new point's edge with.
+            // for an appended one the triangle it shares the new point's edge with; nor does it
+            // fold onto the triangle across its outer edge where that one did not (flip_rules.h:
+            // a point on the input off the triangle's plane, beside a knife edge).
             double worst = 2.0;
             bool ok = true;
             auto check = [&](const Tri& made, int parent) {
-                ok = ok && mesh_.normal(made).dot(mesh_.normal(mesh_.tris[parent])) > 0.0 &&
-                     !faces_against_input(mesh_, made, input_);
+                const Eigen::Vector3d n = mesh_.normal(made), was = mesh_.normal(mesh_.tris[parent]);
+                ok = ok && n.dot(was) > 0.0 && !faces_against_input(mesh_, made, input_);
+                const int k = made[0] == m ? 0 : made[1] == m ? 1 : 2;
+                if (const int x = across(made[(k + 1) % 3], made[(k + 2) % 3], split); ok && x >= 0) {
+                    const Eigen::Vector3d beyond = mesh_.normal(mesh_.tris[x]);
+                    ok = !folded(n, beyond) || folded(was, beyond);
+                }
                 worst = std::min(worst, mesh_.kappa(made));
             };
             for (const auto& [f, made] : split.replace) check(made, f);
@@ -306,8 +330,12 @@ private:
         for (const auto& [f, made] : chosen->replace) {
             mesh_.tris[f] = made;
             near_[f] = 1;
+            made_.push_back(f);
         }
-        for (const Tri& made : chosen->append) mesh_.tris.push_back(made);
+        for (const Tri& made : chosen->append) {
+            made_.push_back(static_cast<int>(mesh_.tris.size()));
+            mesh_.tris.push_back(made);
+        }
         near_.resize(mesh_.tris.size(), 1);
         return true;
     }
@@ -325,6 +353,7 @@ private:
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
     std::vector<char> near_;      // per triangle: made or changed this round
+    std::vector<int> made_;       // the triangles insert_at made or changed since near_ was cleared
     CompressedRows fans_;         // per point near near_, its triangles at the start of the flip pass
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
 };

@@ -1,6 +1,7 @@
 #include "liftremesh/snap/crease_curves.h"
 
 #include "liftremesh/edit/acute_creases.h"
+#include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/exceptions.h"
 #include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/geometry.h"
@@ -140,6 +141,13 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
         }
         return count;
     };
+    // The edges of v's fan folded shut: a triangle of the fan turned by less than 30 degrees
+    // still folds onto the one across a knife edge (a 151-degree edge turned by 20 more).
+    auto folded_round = [&](Eigen::Index v) {
+        return count_folded_edges(
+            fans.row(v), [&mesh](int32_t f) { return std::array<int32_t, 3>{mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)}; },
+            unit_normal, [&fans](int32_t w) { return fans.row(w); });
+    };
     const double cos_turn = std::cos(30.0 * M_PI / 180.0);
     std::vector<Eigen::Vector3d> normals_before;
     for (Eigen::Index v = 0; v < mesh.points.rows(); ++v) {
@@ -161,6 +169,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
             worst_before = std::min(worst_before, kappa(*f));
         }
         const long crossed_before = crossings(v);
+        const int folded_before = folded_round(v);
         mesh.points.row(v) = y.transpose();
         bool keep = true;
         double worst_after = std::numeric_limits<double>::infinity();
@@ -170,7 +179,8 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
         }
         // Off the input's chords, a vertex can meet another part of the surface that touches
         // this one along the crease (two housings of a connector).
-        keep = keep && worst_after >= std::min(params.kappa_floor, worst_before) && crossings(v) <= crossed_before;
+        keep = keep && worst_after >= std::min(params.kappa_floor, worst_before) && folded_round(v) <= folded_before &&
+               crossings(v) <= crossed_before;
         if (keep)
             ++stats.moved;
         else
