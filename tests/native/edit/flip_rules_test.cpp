@@ -1,5 +1,5 @@
-// The flip rules' guard against folds across a quad's rim (flip_rules.h: flip_folds_rim), and
-// the count of folded edges the other edits' rules rest on.
+// The flip rules' guards against folds across a quad's rim and against crossings round its
+// corners (flip_rules.h: flip_folds_rim, flip_crosses_fans), and the counts they rest on.
 #include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/mesh/compressed_rows.h"
 #include "liftremesh/mesh/geometry.h"
@@ -20,6 +20,17 @@ bool flip_folds(const Eigen::Vector3d& e) {
     const auto quad = mesh.quad_of(mesh.edge_uses().at(edge_key(0, 1)));
     EXPECT_TRUE(quad.has_value());
     return flip_folds_rim(mesh, *quad, mesh.fans());
+}
+
+// The same quad with (a, e, f) on its corner a, standing where the flip's (a, d, c), which rises
+// to z = 0.2675 y over (a, b, c) at z = 0, would lie.
+bool flip_crosses(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
+    const Mesh m =
+        test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, e, f}, {{0, 1, 2}, {1, 0, 3}, {0, 4, 5}});
+    const EditableMesh mesh(m);
+    const auto quad = mesh.quad_of(mesh.edge_uses().at(edge_key(0, 1)));
+    EXPECT_TRUE(quad.has_value());
+    return flip_crosses_fans(mesh, *quad, mesh.fans());
 }
 
 } // namespace
@@ -58,4 +69,23 @@ TEST(FlipRules, FoldedEdgesAreCountedOnceOnEitherKindOfMesh) {
     EXPECT_EQ(folded_edges_among(opened, {0, 1, 2},
                                  [&open_fans](int32_t v) { return std::make_pair(open_fans.begin(v), open_fans.end(v)); }),
               0);
+}
+
+TEST(FlipRules, AFlipThatLaysATriangleThroughOneRoundItsCornersIsCaught) {
+    // (a, e, f) rises from between the two surfaces at (0.3, 0.3), where the flip's (a, d, c)
+    // lies at z = 0.08: the flip lays that triangle through it.
+    EXPECT_TRUE(flip_crosses({0.3, 0.3, 0.05}, {0.35, 0.3, 0.5}));
+    // Standing above both surfaces there: crossed by neither.
+    EXPECT_FALSE(flip_crosses({0.3, 0.3, 0.3}, {0.35, 0.3, 0.5}));
+    // Rising from below (a, b, c), which it crosses already: the flip adds no crossing.
+    EXPECT_FALSE(flip_crosses({0.3, 0.3, -0.05}, {0.35, 0.3, 0.5}));
+}
+
+TEST(FlipRules, CrossingsAmongTrianglesAreCountedOncePerPair) {
+    const Mesh m = test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, {0.3, 0.3, -0.05}, {0.35, 0.3, 0.5}},
+                                   {{0, 1, 2}, {1, 0, 3}, {0, 4, 5}});
+    const EditableMesh mesh(m);
+    EXPECT_EQ(crossings_among(mesh, {0, 1, 2}), 1); // (a, e, f) through (a, b, c)
+    EXPECT_EQ(crossings_among(mesh, {2, 0, 2, 0}), 1);
+    EXPECT_EQ(crossings_among(mesh, {1, 2}), 0);
 }

@@ -29,7 +29,8 @@ struct ShortEdgeParams {
 //! each onto one of its two end points (no new position: vertices stay where the optimisation
 //! put them). A collapse is made only if it keeps the surface an oriented manifold with the same
 //! Euler characteristic (the link condition; on an open surface, no edge joining two boundary
-//! vertices through the inside), turns no triangle by more than 45 degrees, and
+//! vertices through the inside), turns no triangle by more than 45 degrees, folds no more edges
+//! shut (flip_rules.h: kCosFolded) than the removed end's fan had, and
 //! raises the smallest kappa (Eq. 26) of the triangles around the edge. Of the two end points
 //! the more corner-like one (larger angle defect) is kept when both would do. Returns the
 //! number of collapses (ShortEdgeStats::collapsed); unreferenced vertices are removed.

@@ -1,6 +1,7 @@
 #include "liftremesh/edit/flip_rules.h"
 
 #include "liftremesh/edit/quality_floors.h"
+#include "liftremesh/spatial/self_intersection.h"
 
 #include <algorithm>
 #include <array>
@@ -82,6 +83,39 @@ bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const
         if (folded(mesh.normal(e.made), n) && !folded(mesh.normal(mesh.tris[e.old_tri]), n)) return true;
     }
     return false;
+}
+
+long crossings_among(const EditableMesh& mesh, std::vector<int> tris) {
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    std::vector<std::array<Eigen::Vector3d, 3>> at;
+    for (int t : tris) at.push_back({mesh.points[mesh.tris[t][0]], mesh.points[mesh.tris[t][1]], mesh.points[mesh.tris[t][2]]});
+    long count = 0;
+    for (size_t i = 0; i < tris.size(); ++i)
+        for (size_t j = i + 1; j < tris.size(); ++j)
+            count += triangles_cross(mesh.tris[tris[i]], at[i], mesh.tris[tris[j]], at[j]) ? 1 : 0;
+    return count;
+}
+
+bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
+    std::vector<int32_t> around;
+    for (int32_t w : {q.a, q.b, q.c, q.d}) around.insert(around.end(), fans.begin(w), fans.end(w));
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    auto at = [&mesh](const EditableMesh::Tri& t) {
+        return std::array<Eigen::Vector3d, 3>{mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
+    };
+    auto crossings = [&](const EditableMesh::Tri& u, const EditableMesh::Tri& v) {
+        long count = 0;
+        for (int32_t g : around) {
+            if (g == q.t1 || g == q.t2) continue;
+            const EditableMesh::Tri& t = mesh.tris[g];
+            count += (triangles_cross(u, at(u), t, at(t)) ? 1 : 0) + (triangles_cross(v, at(v), t, at(t)) ? 1 : 0);
+        }
+        return count;
+    };
+    const auto [n1, n2] = EditableMesh::flipped(q);
+    return crossings(n1, n2) > crossings(mesh.tris[q.t1], mesh.tris[q.t2]);
 }
 
 DiagonalDistances diagonal_distances(const EditableMesh& mesh, const EditableMesh::Quad& quad, const AabbTree& input) {

@@ -121,6 +121,16 @@ int count_folded_edges(const Tris& tris, const Corners& corners, const Normal& n
 //! beside a knife edge can turn a triangle that leaned over the edge onto its other face.
 bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
 
+//! How many pairs of the triangles `tris` (repeats allowed, each taken once) cross
+//! (self_intersection.h: triangles_cross), as the mesh has them now.
+long crossings_among(const EditableMesh& mesh, std::vector<int> tris);
+
+//! Whether flipping the quad's edge makes its two triangles cross more of the triangles round
+//! the quad's corners (self_intersection.h: triangles_cross) than the old two do. `fans` as in
+//! flip_folds_rim; a triangle flipped since is taken as it is now. Beside a knife edge a flip
+//! for distance can lay a triangle through its neighbours on the other face.
+bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
+
 //! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
 //! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the
 //! input (`before`) and that of the other diagonal at most half as far (`after`), neither new

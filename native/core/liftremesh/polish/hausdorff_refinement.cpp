@@ -344,9 +344,10 @@ private:
         if (flip_folds_rim(mesh_, q, fans_)) return false;
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
-        if (before > params_.tolerance && after < 0.5 * before)
-            return crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor);
-        return quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
+        const bool fits = before > params_.tolerance && after < 0.5 * before
+                              ? crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor)
+                              : quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
+        return fits && !flip_crosses_fans(mesh_, q, fans_);
     }
 
     EditableMesh mesh_;

@@ -11,11 +11,13 @@
 // - each witness, farthest first, is inserted where it is nearest to the output: splitting
 //   that triangle or one of its edges, whichever leaves the best triangles, and only if no
 //   triangle made is worse than kappa_floor (Eq. 26), turned over from the one it comes from,
-//   or turned over on the input (flip_rules.h: faces_against_input);
+//   turned over on the input (flip_rules.h: faces_against_input), or folded onto the triangle
+//   across its outer edge where the old one was not;
 // - edges near the insertions are then flipped where the other diagonal of their quad lies
 //   at most half as far from the input (the edge that cut across the crease), or where a
 //   quality flip of a nearly planar quad raises the worse kappa without moving the surface away
-//   from the input (quality_polish.h);
+//   from the input (quality_polish.h), unless it folds a triangle onto the one across the
+//   quad's rim or lays one through a triangle round its corners (flip_rules.h);
 // repeated for a few rounds. Smooth surfaces at the method's sampling mostly have chords within
 // the tolerance; where a strongly curved part does not, the points inserted bring it closer too.
 // The same splits and flips insert given points of the input (insert_input_points): the

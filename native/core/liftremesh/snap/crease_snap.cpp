@@ -53,11 +53,13 @@ public:
         for (int t : fans_[v]) save(t);
         const Eigen::Vector3d was = mesh_.points[v];
         const Measure before = measure_saved(); // the fan's originals, v where it was
-        // The triangles round the fan, whose edges a move and its flips may fold.
+        // The triangles round the fan, whose edges a move and its flips may fold, and which
+        // they may lay through each other beside a knife edge.
         std::vector<int> region;
         for (int t : fans_[v])
             for (int32_t w : mesh_.tris[t]) region.insert(region.end(), fans_[w].begin(), fans_[w].end());
         const int folded_before = folded_edges(region);
+        const long crossed_before = crossings_among(mesh_, region);
         mesh_.points[v] = x;
         long made = 0;
         for (int pass = 0; pass < 4; ++pass) {
@@ -72,7 +74,8 @@ public:
         for (int t : touched()) region.push_back(t);
         const bool ok = after.off <= before.off && folded_edges(region) <= folded_before &&
                         after.worst_kappa >= floor &&
-                        after.farthest <= std::max(params_.tolerance, before.farthest);
+                        after.farthest <= std::max(params_.tolerance, before.farthest) &&
+                        crossings_among(mesh_, region) <= crossed_before;
         if (ok) {
             flips += made;
             return true;

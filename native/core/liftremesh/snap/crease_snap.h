@@ -26,7 +26,10 @@
 // - the worst kappa (Eq. 26) of those triangles is at least kappa_floor (knife_kappa_floor for
 //   a move onto a knife edge);
 // - none of them ends farther from the input than both `tolerance` and the farthest of them
-//   before.
+//   before;
+// - no more edges of the triangles round the fan are folded shut, nor more pairs of them laid
+//   through each other (flip_rules.h), than before: beside a knife edge a move and its flips
+//   can do either.
 // Otherwise the mesh is left as it was. Where the output follows the creases within the
 // tolerance already, nothing moves.
 #pragma once
