@@ -62,13 +62,12 @@ TEST(FlipRules, FoldedEdgesAreCountedOnceOnEitherKindOfMesh) {
     };
     EXPECT_EQ(count_folded_edges(std::vector<int32_t>{2}, corners, normal, [&fans](int32_t v) { return fans.row(v); }), 1);
     // Turned back by 165 degrees only: none.
-    const Mesh open = test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, {0.5, 0.966, 0.259}},
-                                      {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}});
-    const EditableMesh opened(open);
-    const CompressedRows open_fans = opened.fans();
-    EXPECT_EQ(folded_edges_among(opened, {0, 1, 2},
-                                 [&open_fans](int32_t v) { return std::make_pair(open_fans.begin(v), open_fans.end(v)); }),
-              0);
+    const Mesh knife = test::make_mesh({{0, 0, 0}, {0.5, 1, 0}, {1, 0, 0}, {-0.5, 0.8, 0.214}, {0.5, 0.966, 0.259}},
+                                       {{0, 1, 2}, {1, 0, 3}, {0, 2, 4}});
+    const EditableMesh knife_mesh(knife);
+    const CompressedRows knife_fans = knife_mesh.fans();
+    const TrianglesOf knife_of = [&knife_fans](int32_t v) { return std::make_pair(knife_fans.begin(v), knife_fans.end(v)); };
+    EXPECT_EQ(folded_edges_among(knife_mesh, {0, 1, 2}, knife_of), 0);
 }
 
 TEST(FlipRules, AFlipThatLaysATriangleThroughOneRoundItsCornersIsCaught) {

@@ -17,7 +17,8 @@
 // own position along the chord, by at most `max_move` (the tolerance every step keeps to the input
 // within), unless a triangle of its fan turns by more than 30 degrees, the fan's worst kappa
 // (Eq. 26) falls below both the floor and what it was, more of its edges are folded shut
-// (flip_rules.h: kCosFolded), or the fan crosses more triangles than it did (self_intersection.h): off the input, a vertex can meet another part of the surface that
+// (flip_rules.h: kCosFolded), or the fan crosses more triangles than it did
+// (self_intersection.h): off the input, a vertex can meet another part of the surface that
 // touches this one along the crease.
 #pragma once
 
