@@ -85,16 +85,21 @@ bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const
     return false;
 }
 
+long crossings_among(const EditableMesh& mesh, const std::vector<EditableMesh::Tri>& tris) {
+    std::vector<std::array<Eigen::Vector3d, 3>> at;
+    for (const EditableMesh::Tri& t : tris) at.push_back(mesh.corners(t));
+    long count = 0;
+    for (size_t i = 0; i < tris.size(); ++i)
+        for (size_t j = i + 1; j < tris.size(); ++j) count += triangles_cross(tris[i], at[i], tris[j], at[j]) ? 1 : 0;
+    return count;
+}
+
 long crossings_among(const EditableMesh& mesh, std::vector<int> tris) {
     std::sort(tris.begin(), tris.end());
     tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-    std::vector<std::array<Eigen::Vector3d, 3>> at;
-    for (int t : tris) at.push_back({mesh.points[mesh.tris[t][0]], mesh.points[mesh.tris[t][1]], mesh.points[mesh.tris[t][2]]});
-    long count = 0;
-    for (size_t i = 0; i < tris.size(); ++i)
-        for (size_t j = i + 1; j < tris.size(); ++j)
-            count += triangles_cross(mesh.tris[tris[i]], at[i], mesh.tris[tris[j]], at[j]) ? 1 : 0;
-    return count;
+    std::vector<EditableMesh::Tri> as_now;
+    for (int t : tris) as_now.push_back(mesh.tris[t]);
+    return crossings_among(mesh, as_now);
 }
 
 bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
@@ -102,15 +107,14 @@ bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& q, co
     for (int32_t w : {q.a, q.b, q.c, q.d}) around.insert(around.end(), fans.begin(w), fans.end(w));
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
-    auto at = [&mesh](const EditableMesh::Tri& t) {
-        return std::array<Eigen::Vector3d, 3>{mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
-    };
     auto crossings = [&](const EditableMesh::Tri& u, const EditableMesh::Tri& v) {
+        const std::array<Eigen::Vector3d, 3> at_u = mesh.corners(u), at_v = mesh.corners(v);
         long count = 0;
         for (int32_t g : around) {
             if (g == q.t1 || g == q.t2) continue;
             const EditableMesh::Tri& t = mesh.tris[g];
-            count += (triangles_cross(u, at(u), t, at(t)) ? 1 : 0) + (triangles_cross(v, at(v), t, at(t)) ? 1 : 0);
+            const std::array<Eigen::Vector3d, 3> at_t = mesh.corners(t);
+            count += (triangles_cross(u, at_u, t, at_t) ? 1 : 0) + (triangles_cross(v, at_v, t, at_t) ? 1 : 0);
         }
         return count;
     };

@@ -121,8 +121,11 @@ int count_folded_edges(const Tris& tris, const Corners& corners, const Normal& n
 //! beside a knife edge can turn a triangle that leaned over the edge onto its other face.
 bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
 
-//! How many pairs of the triangles `tris` (repeats allowed, each taken once) cross
-//! (self_intersection.h: triangles_cross), as the mesh has them now.
+//! How many pairs of the triangles `tris` (each given once; made or not, on the mesh's points)
+//! cross (self_intersection.h: triangles_cross).
+long crossings_among(const EditableMesh& mesh, const std::vector<EditableMesh::Tri>& tris);
+//! The same for the mesh's triangles numbered in `tris` (repeats allowed, each taken once), as
+//! the mesh has them now.
 long crossings_among(const EditableMesh& mesh, std::vector<int> tris);
 
 //! Whether flipping the quad's edge makes its two triangles cross more of the triangles round

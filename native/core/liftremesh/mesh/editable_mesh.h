@@ -63,6 +63,8 @@ public:
     //! A flag per point: an end of an edge without exactly two triangles.
     std::vector<char> border_points() const;
 
+    //! The positions of a triangle's three corners.
+    std::array<Eigen::Vector3d, 3> corners(const Tri& t) const { return {points[t[0]], points[t[1]], points[t[2]]}; }
     //! Normal of a triangle, of length twice its area (zero if degenerate).
     Eigen::Vector3d normal(const Tri& t) const;
     //! Aspect ratio kappa (Eq. 26).

@@ -16,10 +16,6 @@ namespace {
 
 using Tri = EditableMesh::Tri;
 
-std::array<Eigen::Vector3d, 3> corners(const EditableMesh& mesh, const Tri& t) {
-    return {mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]};
-}
-
 //! The triangles of a pass: a tree of the mesh as the pass found it, and the triangles the
 //! pass has changed since, flipped or moved (their boxes are no longer the tree's).
 struct PassTriangles {
@@ -44,19 +40,17 @@ struct PassTriangles {
         std::vector<std::array<Eigen::Vector3d, 3>> at;
         Eigen::Vector3d lo = mesh.points[tris[0][0]], hi = lo;
         for (const Tri& t : tris) {
-            at.push_back(corners(mesh, t));
+            at.push_back(mesh.corners(t));
             for (const Eigen::Vector3d& x : at.back()) {
                 lo = lo.cwiseMin(x);
                 hi = hi.cwiseMax(x);
             }
         }
-        long count = 0;
-        for (size_t i = 0; i < tris.size(); ++i)
-            for (size_t j = i + 1; j < tris.size(); ++j) count += triangles_cross(tris[i], at[i], tris[j], at[j]) ? 1 : 0;
+        long count = crossings_among(mesh, tris);
         auto test = [&](int g) {
             if (std::find(skip.begin(), skip.end(), g) != skip.end()) return;
             const Tri& t = mesh.tris[static_cast<size_t>(g)];
-            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, t);
+            const std::array<Eigen::Vector3d, 3> pt = mesh.corners(t);
             for (size_t i = 0; i < tris.size(); ++i) count += triangles_cross(tris[i], at[i], t, pt) ? 1 : 0;
         };
         found.clear();
@@ -64,7 +58,7 @@ struct PassTriangles {
         for (int32_t g : found)
             if (!changed[static_cast<size_t>(g)]) test(g);
         for (int g : changed_list) {
-            const std::array<Eigen::Vector3d, 3> pt = corners(mesh, mesh.tris[static_cast<size_t>(g)]);
+            const std::array<Eigen::Vector3d, 3> pt = mesh.corners(mesh.tris[static_cast<size_t>(g)]);
             const Eigen::Vector3d tlo = pt[0].cwiseMin(pt[1]).cwiseMin(pt[2]);
             const Eigen::Vector3d thi = pt[0].cwiseMax(pt[1]).cwiseMax(pt[2]);
             if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all()) test(g);

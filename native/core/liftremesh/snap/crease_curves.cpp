@@ -117,6 +117,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
     const CreaseCurves curves(input, creases, params);
 
     const CompressedRows fans = vertex_triangles(mesh);
+    auto vertices = [&mesh](long f) { return std::array<int32_t, 3>{mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)}; };
     auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
     auto unit_normal = [&](long f) { return triangle_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
     auto kappa = [&](long f) { return triangle_kappa(corner(f, 0), corner(f, 1), corner(f, 2)); };
@@ -127,7 +128,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
     auto crossings = [&](Eigen::Index v) {
         long count = 0;
         for (const int32_t* f = fans.begin(v); f != fans.end(v); ++f) {
-            const std::array<int32_t, 3> fi = {mesh.triangles(*f, 0), mesh.triangles(*f, 1), mesh.triangles(*f, 2)};
+            const std::array<int32_t, 3> fi = vertices(*f);
             const std::array<Eigen::Vector3d, 3> fc = {corner(*f, 0), corner(*f, 1), corner(*f, 2)};
             const Eigen::Vector3d grow = Eigen::Vector3d::Constant(params.max_move);
             near_triangles.clear();
@@ -135,7 +136,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
                                        near_triangles);
             for (int32_t g : near_triangles) {
                 if (g == *f) continue;
-                const std::array<int32_t, 3> gi = {mesh.triangles(g, 0), mesh.triangles(g, 1), mesh.triangles(g, 2)};
+                const std::array<int32_t, 3> gi = vertices(g);
                 count += triangles_cross(fi, fc, gi, {corner(g, 0), corner(g, 1), corner(g, 2)});
             }
         }
@@ -145,8 +146,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
     // still folds onto the one across a knife edge (a 151-degree edge turned by 20 more).
     auto folded_round = [&](Eigen::Index v) {
         return count_folded_edges(
-            fans.row(v), [&mesh](int32_t f) { return std::array<int32_t, 3>{mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)}; },
-            unit_normal, [&fans](int32_t w) { return fans.row(w); });
+            fans.row(v), vertices, unit_normal, [&fans](int32_t w) { return fans.row(w); });
     };
     const double cos_turn = std::cos(30.0 * M_PI / 180.0);
     std::vector<Eigen::Vector3d> normals_before;
