@@ -276,15 +276,49 @@ TEST(PoorTriangles, APoorTriangleOfBoundaryVerticesHasItsLongEdgeSplit) {
     EXPECT_EQ(is.boundary_edges, 4);
 }
 
-TEST(PoorTriangles, APoorTriangleOffTheFlatIsLeft) {
-    // The sliver's vertex 0.3 above the square: its fan is no plane a collapse would keep, and
-    // its long edge's two triangles turn by 77 degrees.
-    const Mesh input = with_sliver(0.3);
+TEST(PoorTriangles, APoorTriangleOnACreaseHasItsCreaseEdgeSplit) {
+    // The sliver's vertex 0.15 above the square, on the input: its fan is no plane a collapse
+    // would keep, and its long edge (2, 1)-(3, 2) is a crease of the input, its two triangles
+    // turning by 65 degrees. Split on it, each half stays on its face.
+    const Mesh input = with_sliver(0.15);
     Mesh m = input;
+    const double before = test::min_kappa(m);
+    ASSERT_LT(before, 0.3);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed, 0);
+    EXPECT_EQ(stats.split, 1);
+    ASSERT_EQ(m.points.rows(), input.points.rows() + 1);
+    EXPECT_TRUE(m.points.bottomRows(1).isApprox(Eigen::RowVector3d(2.5, 1.5, 0.0)));
+    EXPECT_GT(test::min_kappa(m), 0.3);
+    const test::Topology is = test::topology(m), was = test::topology(input);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, was.chi);
+    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+}
+
+TEST(PoorTriangles, APoorTriangleOnAChordAcrossACreaseIsLeft) {
+    // The same sliver, but the input splits the square's cell under its long edge by the other
+    // diagonal, (3, 1)-(2.45, 1.55, 0.15): the long edge is a chord across that crease, its
+    // middle 0.13 below the input. Split at the input's point nearest to it, on the crease, the
+    // sliver's halves would turn by 49 and 55 degrees from it: left, where the crease's own
+    // edge was split above.
+    const Mesh mesh = with_sliver(0.15);
+    ASSERT_LT(test::min_kappa(mesh), 0.3);
+    Mesh input = mesh;
+    const int32_t a = 7, b = 13, c = 12, d = 8; // (2, 1), (3, 2), the sliver's vertex, (3, 1)
+    int replaced = 0;
+    for (Eigen::Index f = 0; f < input.triangles.rows(); ++f) {
+        const auto t = input.triangles.row(f);
+        if ((t.array() == a).any() && (t.array() == b).any())
+            input.triangles.row(f) = replaced++ == 0 ? Eigen::RowVector3i(a, d, c) : Eigen::RowVector3i(d, b, c);
+    }
+    ASSERT_EQ(replaced, 2);
+    ASSERT_TRUE(test::topology(input).oriented_manifold());
+    Mesh m = mesh;
     const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
     EXPECT_EQ(stats.collapsed + stats.split, 0);
-    EXPECT_EQ(m.points, input.points);
-    EXPECT_EQ(m.triangles, input.triangles);
+    EXPECT_EQ(m.points, mesh.points);
+    EXPECT_EQ(m.triangles, mesh.triangles);
 }
 
 TEST(PoorTriangles, NoBoundaryVertexIsCollapsedAway) {

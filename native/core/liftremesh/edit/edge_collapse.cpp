@@ -17,6 +17,11 @@ namespace liftremesh {
 
 namespace {
 
+// How far from a poor triangle's longest edge, over its length, the input's point nearest the
+// edge's middle may lie for the edge to run along the input (mend_poor_triangles): off a chord
+// across a crease turning by 4.6 degrees, on a chord of a curved crease of radius 6 L.
+constexpr double kAlongInput = 0.02;
+
 struct Adjacency {
     std::vector<std::vector<int32_t>> triangles_of; // per vertex, live triangles using it
     std::vector<char> alive;                        // per triangle
@@ -280,14 +285,16 @@ public:
     }
 
     //! Splits the interior edge a-b at p into four triangles if none of them turns from the one it
-    //! comes from by more than 45 degrees and their worst kappa is above `must_beat`. Returns
-    //! whether it did.
-    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat) {
+    //! comes from by more than 45 degrees and their worst kappa is above `must_beat`; an edge
+    //! whose two triangles turn by more only `along_crease`. Returns whether it did.
+    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat, bool along_crease) {
         const auto q = quad(a, b);
         if (!q) return false;
         const auto [f1, f2, c, d] = *q;
-        // Not an edge across a crease or a fold, whose halves would stay one.
-        if (c == d || !(normal_of(mesh_, f1).dot(normal_of(mesh_, f2)) >= std::cos(M_PI / 4))) return false;
+        // Not an edge across a crease or a fold, whose halves would stay one, unless the caller
+        // found it along the input: a crease's edge, whose halves stay on its faces.
+        if (c == d || (!along_crease && !(normal_of(mesh_, f1).dot(normal_of(mesh_, f2)) >= std::cos(M_PI / 4))))
+            return false;
         const std::array<std::pair<int32_t, std::array<int32_t, 3>>, 4> made = {
             {{f1, {a, -1, c}}, {f1, {-1, b, c}}, {f2, {b, -1, d}}, {f2, {-1, a, d}}}};
         for (const auto& [parent, t] : made) {
@@ -425,8 +432,15 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
                 longest = j;
             }
         const int32_t a = t[longest], b = t[(longest + 1) % 3];
-        const ClosestPoint p = reference.tree.closest(0.5 * (position(mesh, a) + position(mesh, b)));
-        if (p.triangle >= 0) collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b));
+        const Eigen::Vector3d pa = position(mesh, a), pb = position(mesh, b);
+        const ClosestPoint p = reference.tree.closest(0.5 * (pa + pb));
+        if (p.triangle < 0) continue;
+        // The edge runs along the input (a crease's, if its triangles turn) when that point lies
+        // on it: a chord across a crease turning by theta has its middle (L / 2) sin(theta / 2)
+        // off the input, 0.19 L at 45 degrees; a chord of a curved crease of radius R, L / (8 R).
+        const double off_edge = (closest_point_on_segment(p.point, pa, pb) - p.point).norm();
+        const bool along_input = off_edge <= kAlongInput * (pb - pa).norm();
+        collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b), along_input);
     }
     PoorTriangleStats stats;
     stats.split = collapser.splits();

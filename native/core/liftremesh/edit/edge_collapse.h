@@ -57,11 +57,14 @@ struct PoorTriangleStats {
 //! - A collapse: each of its edges onto one end point, the other inside the surface (not on its
 //!   boundary) on a flat fan (params.flat_angle_deg), under the rules of collapse_short_edges;
 //!   the first allowed.
-//! - Else a split of its longest edge, an interior one whose two triangles turn by at most 45
-//!   degrees, at the input's point nearest to its midpoint, if none of the four triangles made
-//!   turns from the one it comes from by more than 45 degrees or folds onto the triangle across
-//!   the quad's rim (flip_rules.h: kCosFolded) where that one did not, and their worst kappa is
-//!   above that of the edge's two triangles.
+//! - Else a split of its longest edge, an interior one, at the input's point nearest to its
+//!   midpoint, if none of the four triangles made turns from the one it comes from by more than
+//!   45 degrees or folds onto the triangle across the quad's rim (flip_rules.h: kCosFolded)
+//!   where that one did not, and their worst kappa is above that of the edge's two triangles.
+//!   An edge whose two triangles turn by more than 45 degrees only if it runs along the input
+//!   (that point within 2% of its length from it): along a crease, its halves each stay on
+//!   their faces, where the halves of a chord across a crease, or of an edge folded shut, would
+//!   stay across it or folded.
 //! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
 //! vertices are removed; added ones are appended.
 //! \throw InvalidInput if a parameter is out of range or an index is.
