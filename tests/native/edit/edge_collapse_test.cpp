@@ -321,6 +321,22 @@ TEST(PoorTriangles, APoorTriangleOnAChordAcrossACreaseIsLeft) {
     EXPECT_EQ(m.triangles, mesh.triangles);
 }
 
+TEST(PoorTriangles, AnEdgeFoldedShutOnTheInputIsNotSplit) {
+    // The sliver's vertex moved across its long edge (2, 1)-(3, 2), to (2.55, 1.45): the sliver is
+    // turned over onto the triangle across that edge, both on the flat input. The edge runs along
+    // the input, but split at its middle, both its halves would be folded shut. (The vertex's move
+    // leaves another poor triangle or two beside it, whose flat edges are split.)
+    Mesh mesh = test::make_square(4.0, 4);
+    mesh.points.row(12) << 2.55, 1.45, 0.0;
+    const Mesh input = test::make_square(4.0, 4);
+    ASSERT_LT(test::min_kappa(mesh), 0.3);
+    Mesh m = mesh;
+    mend_poor_triangles(m, test::OwnedReference(input));
+    for (Eigen::Index v = mesh.points.rows(); v < m.points.rows(); ++v)
+        EXPECT_GT((m.points.row(v) - Eigen::RowVector3d(2.5, 1.5, 0.0)).norm(), 1e-6) << "vertex " << v;
+    EXPECT_TRUE(test::topology(m).oriented_manifold());
+}
+
 TEST(PoorTriangles, NoBoundaryVertexIsCollapsedAway) {
     // A rim L-B-R along y = 0 and V 0.1 above B: slivers (L, B, V) and (B, R, V). B's fan is flat,
     // V's is not (the vertex above it lifted): only B could go, and the rim would then run

@@ -62,9 +62,9 @@ struct PoorTriangleStats {
 //!   45 degrees or folds onto the triangle across the quad's rim (flip_rules.h: kCosFolded)
 //!   where that one did not, and their worst kappa is above that of the edge's two triangles.
 //!   An edge whose two triangles turn by more than 45 degrees only if it runs along the input
-//!   (that point within 2% of its length from it): along a crease, its halves each stay on
-//!   their faces, where the halves of a chord across a crease, or of an edge folded shut, would
-//!   stay across it or folded.
+//!   (that point within 2% of its length from it) and is not folded shut (flip_rules.h:
+//!   kCosFolded): along a crease, its halves each stay on their faces, where the halves of a
+//!   chord across a crease, or of an edge folded shut, would stay across it or folded.
 //! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
 //! vertices are removed; added ones are appended.
 //! \throw InvalidInput if a parameter is out of range or an index is.
