@@ -430,6 +430,12 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const PoorTriangleStats mended = mend_poor_triangles(out, reference);
     report.edges_collapsed += mended.collapsed;
     report.vertices_inserted += mended.split;
+    if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
+        std::vector<int32_t> added;
+        for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
+            added.push_back(static_cast<int32_t>(v));
+        report.edges_flipped += flip_around(out, reference, steps.quality_polish, added);
+    }
     // Last, as every step before keeps the surface on the input: the vertices on the chords of a
     // curved crease onto the curve (crease_curves.h), with the explicit creases only.
     if (params.feature_angle < 180.0) {

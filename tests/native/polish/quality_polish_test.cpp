@@ -4,7 +4,8 @@
 // the face a step lower; one on the rim of a thin plate and a triangle short of a cap are not;
 // a chord across a curved wall is flipped along it, not where the new triangles would leave the
 // input; a vertex pushed out of place on a flat part is moved back, one on a crease is not; a
-// closed surface keeps its topology, its orientation and its worst triangle at least as good.
+// closed surface keeps its topology, its orientation and its worst triangle at least as good;
+// the flips around given vertices leave the rest alone.
 #include "liftremesh/edit/flip_rules.h"
 #include "liftremesh/edit/quality_floors.h"
 #include "liftremesh/exceptions.h"
@@ -343,6 +344,26 @@ TEST(QualityPolish, AClosedSurfaceKeepsItsTopologyAndGetsNoWorse) {
     EXPECT_EQ(test::facing_inward(m, Eigen::Vector3d::Zero()), 0);
     EXPECT_GT(test::min_kappa(m), before);
     EXPECT_LE(hausdorff_distance(m, test::make_icosphere(3)).hausdorff, 0.05);
+}
+
+TEST(QualityPolish, FlipsAroundGivenVerticesTouchNothingElse) {
+    // Two kites, the second 10 along x: flips around the first's vertex c flip its diagonal alone.
+    const Mesh one = kite({0, -0.4, 0});
+    Mesh two = one;
+    two.points.col(0).array() += 10.0;
+    const Mesh both = test::joined(one, two);
+    const test::OwnedReference input(both);
+    Mesh m = both;
+    EXPECT_EQ(flip_around(m, input, with_tolerance(0.01), {}), 0);
+    EXPECT_EQ(m.triangles, both.triangles);
+    EXPECT_EQ(flip_around(m, input, with_tolerance(0.01), {2}), 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_TRUE(has_edge(m, 4, 5)); // the second kite's long diagonal, kept
+    EXPECT_FALSE(has_edge(m, 6, 7));
+    EXPECT_EQ(m.points, both.points);
+    EXPECT_EQ(euler_characteristic(m), 2);
+    EXPECT_THROW(flip_around(m, input, with_tolerance(0.01), {8}), InvalidInput);
+    EXPECT_THROW(flip_around(m, input, with_tolerance(0.0), {2}), InvalidInput);
 }
 
 TEST(QualityPolish, BadArgumentsAreRejected) {

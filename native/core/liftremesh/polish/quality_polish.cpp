@@ -236,12 +236,26 @@ private:
 
 } // namespace
 
-QualityPolishStats polish_quality(Mesh& mesh, const Reference& reference, const QualityPolishParams& params) {
-    const AabbTree& input = reference.tree;
+namespace {
+void check_polish(const Mesh& mesh, const QualityPolishParams& params) {
     check_indices(mesh, "polished mesh");
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.flip_passes < 0 ||
         params.relax_passes < 0)
         throw InvalidInput("polish_quality: the tolerance must be positive and finite, the passes not negative");
+}
+
+// Per triangle of `mesh`, whether one of its corners is flagged in `at` (#V flags).
+std::vector<char> triangles_at(const EditableMesh& mesh, const std::vector<char>& at) {
+    std::vector<char> around(mesh.tris.size(), 0);
+    for (size_t t = 0; t < mesh.tris.size(); ++t)
+        for (int32_t v : mesh.tris[t]) around[t] = around[t] || at[v];
+    return around;
+}
+} // namespace
+
+QualityPolishStats polish_quality(Mesh& mesh, const Reference& reference, const QualityPolishParams& params) {
+    const AabbTree& input = reference.tree;
+    check_polish(mesh, params);
     EditableMesh editable(mesh);
     QualityPolishStats stats;
     stats.flipped = flip_caps(editable, input, params.tolerance);
@@ -254,14 +268,28 @@ QualityPolishStats polish_quality(Mesh& mesh, const Reference& reference, const 
         stats.moved += count;
         if (count == 0) break;
     }
-    if (stats.moved > 0) {
-        std::vector<char> around(editable.tris.size(), 0);
-        for (size_t t = 0; t < editable.tris.size(); ++t)
-            for (int32_t v : editable.tris[t]) around[t] = around[t] || moved[v];
-        stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes, around, stats.unfolded);
-    }
+    if (stats.moved > 0)
+        stats.flipped += flip_passes(editable, input, params.tolerance, params.flip_passes,
+                                     triangles_at(editable, moved), stats.unfolded);
     if (stats.flipped > 0 || stats.moved > 0) editable.write_to(mesh);
     return stats;
+}
+
+long flip_around(Mesh& mesh, const Reference& reference, const QualityPolishParams& params,
+                 const std::vector<int32_t>& vertices) {
+    check_polish(mesh, params);
+    if (vertices.empty()) return 0;
+    std::vector<char> at(static_cast<size_t>(mesh.points.rows()), 0);
+    for (const int32_t v : vertices) {
+        if (v < 0 || v >= mesh.points.rows()) throw InvalidInput("flip_around: a vertex index is out of range");
+        at[static_cast<size_t>(v)] = 1;
+    }
+    EditableMesh editable(mesh);
+    long unfolded = 0;
+    const long flipped =
+        flip_passes(editable, reference.tree, params.tolerance, params.flip_passes, triangles_at(editable, at), unfolded);
+    if (flipped > 0) editable.write_to(mesh);
+    return flipped;
 }
 
 } // namespace liftremesh

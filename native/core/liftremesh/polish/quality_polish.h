@@ -45,6 +45,9 @@
 #include "liftremesh/mesh/mesh.h"
 #include "liftremesh/spatial/reference.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace liftremesh {
 
 struct QualityPolishParams {
@@ -70,5 +73,13 @@ struct QualityPolishStats {
 //! Flips, relaxes and flips again (see above). Throws InvalidInput if the tolerance is not
 //! positive and finite, a pass count is negative, or an index is out of range.
 QualityPolishStats polish_quality(Mesh& mesh, const Reference& input, const QualityPolishParams& params);
+
+//! The flips of polish_quality (folds, chords, quality), as after its relaxation: over the edges
+//! of the triangles around `vertices`, then around those the last pass changed. For vertices an
+//! edit after the polish added (the mending's splits, edge_collapse.h), whose triangles no flip
+//! has weighed: a split of a quad's edge can leave a triangle that the flip of its next edge
+//! would lift. Returns the flips; throws as polish_quality does.
+long flip_around(Mesh& mesh, const Reference& input, const QualityPolishParams& params,
+                 const std::vector<int32_t>& vertices);
 
 } // namespace liftremesh
