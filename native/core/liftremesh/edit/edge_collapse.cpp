@@ -286,9 +286,9 @@ public:
 
     //! Splits the interior edge a-b at p into four triangles if none of them turns from the one it
     //! comes from by more than 45 degrees and their worst kappa is above `must_beat`; an edge
-    //! whose two triangles turn by more only `along_crease`, and not folded shut. Returns
-    //! whether it did.
-    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat, bool along_crease) {
+    //! whose two triangles turn by more only `along_input` (the caller found p on it: along a
+    //! crease), and not folded shut. Returns whether it did.
+    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat, bool along_input) {
         const auto q = quad(a, b);
         if (!q) return false;
         const auto [f1, f2, c, d] = *q;
@@ -296,7 +296,7 @@ public:
         // found it along the input: a crease's edge, whose halves stay on its faces. Never an
         // edge folded shut (flip_rules.h: kCosFolded), whose halves would both be.
         const double turn = normal_of(mesh_, f1).dot(normal_of(mesh_, f2));
-        if (c == d || !(turn >= std::cos(M_PI / 4) || (along_crease && turn > kCosFolded))) return false;
+        if (c == d || !(turn >= std::cos(M_PI / 4) || (along_input && turn > kCosFolded))) return false;
         const std::array<std::pair<int32_t, std::array<int32_t, 3>>, 4> made = {
             {{f1, {a, -1, c}}, {f1, {-1, b, c}}, {f2, {b, -1, d}}, {f2, {-1, a, d}}}};
         for (const auto& [parent, t] : made) {

@@ -234,9 +234,6 @@ private:
     CompressedRows fans_;         // vertex -> its triangles
 };
 
-} // namespace
-
-namespace {
 void check_polish(const Mesh& mesh, const QualityPolishParams& params) {
     check_indices(mesh, "polished mesh");
     if (!(params.tolerance > 0.0) || !std::isfinite(params.tolerance) || params.flip_passes < 0 ||
@@ -251,6 +248,7 @@ std::vector<char> triangles_at(const EditableMesh& mesh, const std::vector<char>
         for (int32_t v : mesh.tris[t]) around[t] = around[t] || at[v];
     return around;
 }
+
 } // namespace
 
 QualityPolishStats polish_quality(Mesh& mesh, const Reference& reference, const QualityPolishParams& params) {
