@@ -33,8 +33,6 @@ double kappa_of(const Mesh& m, const std::array<int32_t, 3>& t) {
     return triangle_kappa(position(m, t[0]), position(m, t[1]), position(m, t[2]));
 }
 
-std::array<int32_t, 3> corners(const Mesh& m, int32_t f) { return {m.triangles(f, 0), m.triangles(f, 1), m.triangles(f, 2)}; }
-
 // Unit normal of triangle f as the mesh has it now (zero if degenerate).
 Eigen::Vector3d normal_of(const Mesh& m, int32_t f) {
     return triangle_normal(position(m, m.triangles(f, 0)), position(m, m.triangles(f, 1)), position(m, m.triangles(f, 2)));
@@ -44,7 +42,7 @@ Eigen::Vector3d normal_of(const Mesh& m, int32_t f) {
 double angle_defect(const Mesh& m, const Adjacency& adj, int32_t v) {
     double sum = 0.0;
     for (int32_t f : adj.triangles_of[v]) {
-        const auto t = corners(m, f);
+        const auto t = triangle_vertices(m, f);
         const int i = t[0] == v ? 0 : t[1] == v ? 1 : 2;
         const Eigen::Vector3d a = position(m, t[(i + 1) % 3]) - position(m, v);
         const Eigen::Vector3d b = position(m, t[(i + 2) % 3]) - position(m, v);
@@ -56,7 +54,7 @@ double angle_defect(const Mesh& m, const Adjacency& adj, int32_t v) {
 std::vector<int32_t> neighbours(const Mesh& m, const Adjacency& adj, int32_t v) {
     std::vector<int32_t> out;
     for (int32_t f : adj.triangles_of[v])
-        for (int32_t w : corners(m, f))
+        for (int32_t w : triangle_vertices(m, f))
             if (w != v) out.push_back(w);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -70,17 +68,17 @@ std::vector<int32_t> neighbours(const Mesh& m, const Adjacency& adj, int32_t v) 
 bool collapse_folds(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t gone) {
     const std::vector<int32_t>& fan = adj.triangles_of[gone];
     auto uses = [&m](int32_t f, int32_t v) {
-        const auto t = corners(m, f);
+        const auto t = triangle_vertices(m, f);
         return std::find(t.begin(), t.end(), v) != t.end();
     };
     const int before = count_folded_edges(
-        fan, [&m](int32_t f) { return corners(m, f); }, [&m](int32_t f) { return normal_of(m, f); },
+        fan, [&m](int32_t f) { return triangle_vertices(m, f); }, [&m](int32_t f) { return normal_of(m, f); },
         [&adj](int32_t v) -> const std::vector<int32_t>& { return adj.triangles_of[v]; });
     std::vector<int32_t> moved;
     for (int32_t f : fan)
         if (!uses(f, kept)) moved.push_back(f);
     auto corners_after = [&](int32_t f) {
-        auto t = corners(m, f);
+        auto t = triangle_vertices(m, f);
         for (auto& v : t)
             if (v == gone) v = kept;
         return t;
@@ -107,7 +105,7 @@ double try_collapse(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t g
     const Eigen::Vector3d p = position(m, kept);
     double worst = 1.0;
     for (int32_t f : adj.triangles_of[gone]) {
-        auto t = corners(m, f);
+        auto t = triangle_vertices(m, f);
         if (std::find(t.begin(), t.end(), kept) != t.end()) continue; // removed by the collapse
         const Eigen::Vector3d before = normal_of(m, f);
         for (auto& v : t)
@@ -119,7 +117,7 @@ double try_collapse(const Mesh& m, const Adjacency& adj, int32_t kept, int32_t g
         worst = std::min(worst, triangle_kappa(q[0], q[1], q[2]));
     }
     for (int32_t f : adj.triangles_of[kept]) {
-        const auto t = corners(m, f);
+        const auto t = triangle_vertices(m, f);
         if (std::find(t.begin(), t.end(), gone) != t.end()) continue;
         worst = std::min(worst, kappa_of(m, t));
     }
@@ -163,7 +161,7 @@ public:
     double worst_kappa_around(std::initializer_list<int32_t> vertices) const {
         double worst = 1.0;
         for (int32_t v : vertices)
-            for (int32_t f : adj_.triangles_of[v]) worst = std::min(worst, kappa_of(mesh_, corners(mesh_, f)));
+            for (int32_t f : adj_.triangles_of[v]) worst = std::min(worst, kappa_of(mesh_, triangle_vertices(mesh_, f)));
         return worst;
     }
 
@@ -173,7 +171,7 @@ public:
         std::array<int32_t, 4> q{-1, -1, -1, -1};
         int found = 0;
         for (int32_t f : adj_.triangles_of[a]) {
-            const auto t = corners(mesh_, f);
+            const auto t = triangle_vertices(mesh_, f);
             const int i = t[0] == a ? 0 : t[1] == a ? 1 : 2;
             if (t[(i + 1) % 3] == b) {
                 q[0] = f;
@@ -194,7 +192,7 @@ public:
     double worst_kappa_of_edge(int32_t a, int32_t b) const {
         const auto q = quad(a, b);
         if (!q) return 2.0;
-        return std::min(kappa_of(mesh_, corners(mesh_, (*q)[0])), kappa_of(mesh_, corners(mesh_, (*q)[1])));
+        return std::min(kappa_of(mesh_, triangle_vertices(mesh_, (*q)[0])), kappa_of(mesh_, triangle_vertices(mesh_, (*q)[1])));
     }
 
     //! Whether triangle f is still there (not taken out by a collapse).
@@ -203,7 +201,7 @@ public:
     //! Whether a and b are joined by an edge.
     bool joined(int32_t a, int32_t b) const {
         for (int32_t f : adj_.triangles_of[a]) {
-            const auto t = corners(mesh_, f);
+            const auto t = triangle_vertices(mesh_, f);
             if (std::find(t.begin(), t.end(), b) != t.end()) return true;
         }
         return false;
@@ -213,7 +211,7 @@ public:
     //! quad's orientation kept. Returns the two triangles as they were, for unflip().
     std::array<std::array<int32_t, 3>, 2> flip(int32_t a, int32_t b, const std::array<int32_t, 4>& q) {
         const auto [f1, f2, c, d] = q;
-        const std::array<std::array<int32_t, 3>, 2> was = {corners(mesh_, f1), corners(mesh_, f2)};
+        const std::array<std::array<int32_t, 3>, 2> was = {triangle_vertices(mesh_, f1), triangle_vertices(mesh_, f2)};
         mesh_.triangles.row(f1) << a, d, c;
         mesh_.triangles.row(f2) << d, b, c;
         drop(a, f2);
@@ -244,7 +242,7 @@ public:
         // only common neighbours of a and b (link condition: the collapse keeps a manifold).
         std::vector<int32_t> shared, opposite;
         for (int32_t f : adj_.triangles_of[a]) {
-            const auto t = corners(mesh_, f);
+            const auto t = triangle_vertices(mesh_, f);
             if (std::find(t.begin(), t.end(), b) == t.end()) continue;
             shared.push_back(f);
             for (int32_t v : t)
@@ -271,7 +269,7 @@ public:
 
         for (int32_t f : shared) {
             adj_.alive[f] = 0;
-            for (int32_t v : corners(mesh_, f)) drop(v, f);
+            for (int32_t v : triangle_vertices(mesh_, f)) drop(v, f);
         }
         for (int32_t f : adj_.triangles_of[gone]) {
             for (int j = 0; j < 3; ++j)
@@ -359,7 +357,7 @@ private:
     int32_t other_triangle(int32_t u, int32_t v, int32_t f) const {
         for (int32_t g : adj_.triangles_of[u]) {
             if (g == f) continue;
-            const auto t = corners(mesh_, g);
+            const auto t = triangle_vertices(mesh_, g);
             if (std::find(t.begin(), t.end(), v) != t.end()) return g;
         }
         return -1;
@@ -407,7 +405,7 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
     check_indices(mesh, "poor triangles' mesh");
     std::vector<std::pair<double, int32_t>> poor; // (kappa, triangle), worst first
     for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        if (const double k = kappa_of(mesh, corners(mesh, static_cast<int32_t>(f))); k < params.kappa_below)
+        if (const double k = kappa_of(mesh, triangle_vertices(mesh, static_cast<int32_t>(f))); k < params.kappa_below)
             poor.emplace_back(k, static_cast<int32_t>(f));
     if (poor.empty()) return {};
     std::sort(poor.begin(), poor.end());
@@ -415,7 +413,7 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
     Collapser collapser(mesh);
     for (const auto& [kappa, f] : poor) {
         if (!collapser.alive(f)) continue; // taken out by an earlier collapse
-        const auto t = corners(mesh, f);
+        const auto t = triangle_vertices(mesh, f);
         if (kappa_of(mesh, t) != kappa) continue; // changed by an earlier split
         bool mended = false;
         for (int j = 0; j < 3 && !mended; ++j) {

@@ -34,6 +34,11 @@ inline Eigen::Vector3d corner(const Mesh& mesh, Eigen::Index f, int j) {
     return mesh.points.row(mesh.triangles(f, j)).transpose();
 }
 
+//! The three vertices of triangle f, in its order.
+inline std::array<int32_t, 3> triangle_vertices(const Mesh& mesh, Eigen::Index f) {
+    return {mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)};
+}
+
 //! Similarity that maps a mesh into the unit ball (Section 5.1): x' = (x - center) / scale.
 struct UnitBallTransform {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();

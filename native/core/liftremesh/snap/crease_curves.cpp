@@ -117,7 +117,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
     const CreaseCurves curves(input, creases, params);
 
     const CompressedRows fans = vertex_triangles(mesh);
-    auto vertices = [&mesh](long f) { return std::array<int32_t, 3>{mesh.triangles(f, 0), mesh.triangles(f, 1), mesh.triangles(f, 2)}; };
+    auto vertices = [&mesh](long f) { return triangle_vertices(mesh, f); };
     auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
     auto unit_normal = [&](long f) { return triangle_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
     auto kappa = [&](long f) { return triangle_kappa(corner(f, 0), corner(f, 1), corner(f, 2)); };
