@@ -105,6 +105,8 @@ FIELDS = {
     "crease_sites": "sites held still on the creases over the feature angle and on their corners (hold_creases; 0 when off)",
     "parts_unheld": "parts whose creases were snapped to rather than held, holding them having broken the "
                     "part's surface (hold_creases; also a warning)",
+    "parts_eta_reduced": "parts lifted again with normals averaged over balls a quarter of the edge length "
+                         "wide, eta's having broken the part's surface (also a warning)",
     "sites_split": "sites whose restricted cell came in pieces that do not touch, a vertex each",
     "holes_filled": "holes of the triangulation filled (those not along the input's own boundary)",
     "triangles_removed": "triangles removed by the manifold repair, darts jutting into the holes it fills, and "
@@ -141,6 +143,7 @@ WARNINGS = [
     "the target edge length merged or broke (the paper's Section 2.2)",
     "closed parts kept their input triangles (`parts_kept`)",
     "parts had their creases snapped to rather than held (`parts_unheld`)",
+    "parts were lifted again with normals over smaller balls than eta (`parts_eta_reduced`)",
     "the output has more boundary loops than the input: holes",
     "the output has triangles passing through each other or touching (whatever the input has)",
     "`hausdorff_relative` is over 1%",

@@ -43,7 +43,7 @@ TEST(Report, JsonHasEveryKeyAndValidNumbers) {
     const std::string json = to_json(sample_report());
     for (const char* key :
          {"input", "output", "input_duplicates_removed", "input_degenerate_removed", "input_facets_turned", "bbox_diagonal", "hausdorff_relative", "mean_distance_relative", "sites", "iterations",
-          "evaluations", "energy_initial", "energy_final", "crease_sites", "parts_unheld", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
+          "evaluations", "energy_initial", "energy_final", "crease_sites", "parts_unheld", "parts_eta_reduced", "sites_split", "parts", "parts_kept", "holes_filled", "triangles_removed", "edges_collapsed",
           "vertices_inserted", "edges_flipped", "vertices_moved", "boundary_vertices_snapped", "stray_components_removed", "stray_inward_removed", "cracks_closed",
           "vertex_fans_split", "expected_euler_characteristic", "timings", "warnings"})
         EXPECT_EQ(count(json, std::string("\"") + key + "\": "), 1u) << key;
@@ -158,6 +158,19 @@ TEST(Report, WarnsOfPartsWhoseCreasesWereSnappedToRatherThanHeld) {
     ASSERT_EQ(w.size(), 1u);
     EXPECT_NE(w[0].find("the creases of 1 of the source's 3 parts were snapped to, not held"), std::string::npos) << w[0];
     EXPECT_NE(to_json(r).find("\"parts_unheld\": 1"), std::string::npos) << to_json(r);
+}
+
+TEST(Report, WarnsOfPartsLiftedAgainOverSmallerBalls) {
+    RemeshReport r;
+    r.input.euler_characteristic = r.output.euler_characteristic = -186;
+    EXPECT_TRUE(report_warnings(r).empty());
+    r.parts_eta_reduced = 1;
+    const std::vector<std::string> w = report_warnings(r);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("the normals of 1 of the source's 1 part were averaged over balls a quarter of the target edge"),
+              std::string::npos)
+        << w[0];
+    EXPECT_NE(to_json(r).find("\"parts_eta_reduced\": 1"), std::string::npos) << to_json(r);
 }
 
 TEST(Report, AnOpenSurfaceKeepingItsBordersOrACrackClosedIsNoWarning) {

@@ -75,7 +75,8 @@ struct RemeshParams {
     //! eta: radius of the geometric neighbourhood over which vertex normals are averaged
     //! (Section 5.2.1), in unit-ball units. Range (0, 0.5]. Default 0.02 rather than 0.01: the
     //! wider ball averages over more of a CAD tessellation's slivers, so the normals near them
-    //! are smoother (the measurements are in the history: git log -S'eta = 0.02').
+    //! are smoother (the measurements are in the history: git log -S'eta = 0.02'). A part whose
+    //! surface breaks with it is lifted again over smaller balls (pipeline.h).
     double eta = 0.02;
     //! Number of L-BFGS iterations in all. The first 90% use sigma = 1, the rest (at least 10)
     //! use sigma (Section 6.2.2). Range >= 1. Default 100.

@@ -137,6 +137,7 @@ struct Piece {
     double sized_count = 0.0;
     double size_smallest = 0.0;
     SizeField size_areas;
+    long midpoints_allowed = 0; // the thin walls' midpoints it could take when lifted
 };
 
 // Facets turning by more than this are creases, not a bend the size field refines: a CAD
@@ -162,11 +163,12 @@ SizeFieldParams size_bounds(const RemeshParams& params, const UnitBallTransform&
 // `midpoints_left`: what the thin walls' sampling may still add, over all pieces (decreased).
 void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransform& to_unit, double spacing,
                 long sites_wanted, double total_area, long& midpoints_left) {
+    piece.midpoints_allowed = midpoints_left;
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
     // One tree over the input serves the normals and, later, the thin walls and the projections
     // back onto it: the unit-ball copy's normals at eta are the input's at eta times the scale.
-    piece.tree = std::make_unique<AabbTree>(input);
+    if (!piece.tree) piece.tree = std::make_unique<AabbTree>(input);
     const Points normals = vertex_normals(input, *piece.tree, params.eta * to_unit.scale); // Section 5.2.1
     const Eigen::VectorXd turn = triangle_normal_turn(unit, normals, params.eta); // Eqs. 22-23
     const Eigen::VectorXd weights = density_weights((1.0 + turn.array()).matrix(), params.delta); // Eqs. 24-25
@@ -457,6 +459,7 @@ void add_counts(RemeshReport& to, const RemeshReport& run) {
     to.energy_final += run.energy_final;
     to.crease_sites += run.crease_sites;
     to.parts_unheld += run.parts_unheld;
+    to.parts_eta_reduced += run.parts_eta_reduced;
     to.sites_split += run.sites_split;
     to.holes_filled += run.holes_filled;
     to.triangles_removed += run.triangles_removed;
@@ -476,14 +479,6 @@ bool keeps_topology(const MeshQuality& in, const MeshQuality& out) {
     return out.euler_characteristic == expected_euler_characteristic(run);
 }
 
-// Whether a small closed piece came out as the surface it is (closed, manifold, with the Euler
-// characteristic the report expects of it, so that it raises no topology warning) and with no
-// triangle worse than its input's worst, or kKappaFloor: else its input's triangles are better.
-bool keeps_piece(const MeshQuality& in, const MeshQuality& out) {
-    return out.triangles > 0 && out.boundary_edges == 0 && out.nonmanifold_edges == 0 && keeps_topology(in, out) &&
-           out.kappa_min >= std::min(in.kappa_min, kKappaFloor);
-}
-
 // What a piece's output (`out`, measured) has wrong that its input (`in`) has not: a topology
 // other than the report expects of it, and each edge folded shut, non-manifold edge or hole more
 // than the input's. Zero for a sound surface; no triangle at all counts as the worst.
@@ -494,66 +489,163 @@ long surface_defects(const MeshQuality& in, const MeshQuality& out) {
            std::max(0L, out.boundary_loops - in.boundary_loops);
 }
 
+// Whether a small closed piece came out as the surface it is (closed, with no defect its input
+// has not: the Euler characteristic the report expects of it, no edge folded shut) and with no
+// triangle worse than its input's worst, or kKappaFloor: else its input's triangles are better.
+bool keeps_piece(const MeshQuality& in, const MeshQuality& out) {
+    return out.triangles > 0 && out.boundary_edges == 0 && out.nonmanifold_edges == 0 && surface_defects(in, out) == 0 &&
+           out.kappa_min >= std::min(in.kappa_min, kKappaFloor);
+}
+
 // A piece's output measured; an empty one (a run that made no triangle) has no triangle.
 MeshQuality measured(const Mesh& out) { return out.triangles.rows() > 0 ? measure_quality(out) : MeshQuality{}; }
 
 // Largest share of the input's area a closed piece may have to come out as its input's triangles
-// when remeshing it fails (remesh_one_of_many).
+// when remeshing it fails (remesh_or_keep).
 constexpr double kSmallPiece = 0.05;
 
-// One of several pieces, its counts added to the report. A closed piece of at most kSmallPiece of
-// the input's area that does not come out as the surface it is (keeps_piece), being thinner than
-// its cells (a ring lower than the spacing, given a few sites), is remeshed again
-// with twice the sites while `retry_sites` (shared by all pieces) lasts, each time at most
-// max(64, wanted / 10); if none does, it comes out as its input's triangles
-// (report.parts_kept), as Gmsh keeps a surface smaller than the mesh size with its curves' own
-// points. A larger piece, or the open ones, comes out as remesh_piece makes it: the report's
-// warnings tell.
-// With hold_creases, a piece whose output has a defect its input has not (surface_defects) is
-// remeshed again with its creases snapped to rather than held, and the run with fewer defects
-// kept (report.parts_unheld): held sites on creases closer together than the spacing (a bore
-// meeting a chamfer a fraction of it away) hold cells too narrow for the triangulation to join
-// as the surface does, where free sites move apart. `whole`: the input's quality when the piece
-// is all of it (the report's, measured once: on a million triangles it takes seconds).
-Mesh remesh_one_of_many(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
-                        double spacing, double input_area, long sites_wanted, long& retry_sites, StageClock& clock,
-                        const ProgressCallback& progress, const MeshQuality* whole, RemeshReport& report) {
+// The eta-ball of a piece's second lifting (remesh_soundly), in spacings: a ball wider than a
+// part's members (the frame's 3 mm members round 1.8 mm pin holes, under a default ball of 3.6
+// mm) averages their sides' normals with their faces', so that the lifting no longer sets a
+// member's sides apart; a quarter of the spacing sees one side at a time where the sites can
+// tell the sides apart at all.
+constexpr double kSecondEtaSpacings = 0.25;
+
+// What a piece's runs are measured against: its input's quality and, made when first needed,
+// the limits of the stray pieces the whole output's pass removes (stray_components.h).
+struct PieceInput {
+    const Mesh& mesh;
+    const MeshQuality& quality;
+    std::optional<StrayComponentParams> strays;
+
+    const StrayComponentParams& stray_limits() {
+        if (!strays) strays = stray_component_params(mesh_components(mesh));
+        return *strays;
+    }
+};
+
+// One run of remesh_piece on a piece, measured as it will be handed on: a defect that is only a
+// stray bubble (surface_defects counts its Euler characteristic) is not one.
+struct PieceRun {
+    Mesh mesh;
+    Mesh handed; // the mesh less its stray pieces, if it has any
+    MeshQuality quality;
+    RemeshReport report;
+    long crossings = -1; // pairs of triangles crossing (self_intersection.h), counted when needed
+};
+
+long crossings(PieceRun& run) {
+    if (run.crossings < 0) {
+        const Mesh& mesh = run.handed.triangles.rows() > 0 ? run.handed : run.mesh;
+        run.crossings = count_self_intersections(mesh, AabbTree(mesh));
+    }
+    return run.crossings;
+}
+
+// Runs remesh_piece, measured; a run that makes no triangle (TopologyFailure) comes out empty
+// when `may_fail`, else throws.
+PieceRun run_piece(Piece& piece, PieceInput& in, std::uint64_t seed, const RemeshParams& params,
+                   const UnitBallTransform& to_unit, double spacing, StageClock& clock,
+                   const ProgressCallback& progress, bool may_fail) {
+    PieceRun run;
+    try {
+        run.mesh = remesh_piece(piece, seed, params, to_unit, spacing, clock, progress, run.report);
+    } catch (const TopologyFailure&) { // too few sites for a triangle
+        if (!may_fail) throw;
+    }
+    run.quality = measured(run.mesh);
+    if (run.quality.triangles > 0 && surface_defects(in.quality, run.quality) > 0) {
+        Mesh handed = run.mesh;
+        if (remove_stray_components(handed, in.stray_limits()).removed > 0) {
+            run.quality = measured(handed);
+            run.handed = std::move(handed);
+        }
+    }
+    return run;
+}
+
+// Whether run `b` is a sounder surface than run `a` for a piece whose input measured `in`: it
+// keeps the topology the report expects where `a` does not, or has the same verdict and fewer of
+// the other defects (surface_defects), pairs of triangles crossing counted in if both keep it. A
+// run that lost the topology is wrong wherever members merged, whatever its crossings; and these
+// are counted before the untangling, which removes most, so they decide only between sound runs.
+bool sounder(const MeshQuality& in, PieceRun& a, PieceRun& b) {
+    if (b.quality.triangles == 0) return false;
+    if (a.quality.triangles == 0) return true;
+    const bool a_keeps = keeps_topology(in, a.quality), b_keeps = keeps_topology(in, b.quality);
+    if (a_keeps != b_keeps) return b_keeps;
+    if (!a_keeps) return surface_defects(in, b.quality) < surface_defects(in, a.quality);
+    return surface_defects(in, b.quality) + crossings(b) < surface_defects(in, a.quality) + crossings(a);
+}
+
+// Remeshes a piece and, while its output has a defect its input (measured `in`) has not
+// (surface_defects), again in the ways that may avoid it, keeping the soundest run:
+// - with hold_creases, its creases snapped to rather than held (report.parts_unheld): held
+//   sites on creases closer together than the spacing (a bore meeting a chamfer a fraction of
+//   it away) hold cells too narrow for the triangulation to join as the surface does, where
+//   free sites move apart;
+// - then, with its creases as asked, lifted with normals averaged over a ball of
+//   kSecondEtaSpacings spacings if that is smaller than eta (report.parts_eta_reduced): a cause
+//   of its own, which held sites do not make worse.
+// Each run replaces the one kept if it is sounder. `small`: a piece whose first run may make no
+// triangle, and that remesh_or_keep runs again with more sites if it does not come out whole.
+PieceRun remesh_soundly(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
+                        double spacing, double unit_area, long sites_wanted, PieceInput& input, bool small,
+                        StageClock& clock, const ProgressCallback& progress) {
+    const MeshQuality& in = input.quality;
+    PieceRun kept = run_piece(piece, input, seed, params, to_unit, spacing, clock, progress, small);
+    const bool holding = params.hold_creases && params.feature_angle < 180.0;
+    if (holding && kept.report.crease_sites > 0 && surface_defects(in, kept.quality) > 0) {
+        RemeshParams snapped_params = params;
+        snapped_params.hold_creases = false;
+        PieceRun snapped = run_piece(piece, input, seed, snapped_params, to_unit, spacing, clock, progress, true);
+        if (sounder(in, kept, snapped)) {
+            kept = std::move(snapped);
+            kept.report.parts_unheld = 1;
+        }
+    }
+    // Not a small piece: thinner than its few cells, it gets more sites (remesh_or_keep).
+    const double second_eta = kSecondEtaSpacings * spacing;
+    if (!small && params.nu > 0.0 && second_eta < params.eta && surface_defects(in, kept.quality) > 0) {
+        RemeshParams narrow = params;
+        narrow.eta = second_eta;
+        long midpoints = piece.midpoints_allowed;
+        piece.surface = LiftedSurface{}; // freed first: on a million triangles, hundreds of MB
+        clock.begin("normals");
+        lift_piece(piece, narrow, to_unit, spacing, sites_wanted, unit_area, midpoints);
+        clock.end();
+        PieceRun again = run_piece(piece, input, seed, narrow, to_unit, spacing, clock, progress, true);
+        if (sounder(in, kept, again)) {
+            again.report.parts_eta_reduced = 1;
+            kept = std::move(again);
+        }
+    }
+    return kept;
+}
+
+// One piece, its counts added to the report (remesh_soundly). A closed piece of at most
+// kSmallPiece of the input's area that does not come out as the surface it is (keeps_piece),
+// being thinner than its cells (a ring lower than the spacing, given a few sites), is remeshed
+// again with twice the sites while `retry_sites` (shared by all pieces) lasts, each time at most
+// max(64, wanted / 10); if none does, it comes out as its input's triangles (report.parts_kept),
+// as Gmsh keeps a surface smaller than the mesh size with its curves' own points. A larger
+// piece, or the open ones, comes out as remesh_soundly makes it: the report's warnings tell.
+// `whole`: the input's quality when the piece is all of it (the report's, measured once: on a
+// million triangles it takes seconds).
+Mesh remesh_or_keep(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
+                        double spacing, double unit_area, double input_area, long sites_wanted, long& retry_sites,
+                        StageClock& clock, const ProgressCallback& progress, const MeshQuality* whole,
+                        RemeshReport& report) {
     if (piece.sites == 0) return {}; // no triangle of positive area: nothing to remesh
     const bool small = piece.closed && surface_area(*piece.input) <= kSmallPiece * input_area;
-    const bool holding = params.hold_creases && params.feature_angle < 180.0;
-    const MeshQuality in = whole ? *whole : small || holding ? measure_quality(*piece.input) : MeshQuality{};
+    const MeshQuality in = whole ? *whole : measure_quality(*piece.input);
+    PieceInput input{*piece.input, in, std::nullopt};
     for (;;) {
-        RemeshReport run;
-        Mesh part;
-        try {
-            part = remesh_piece(piece, seed, params, to_unit, spacing, clock, progress, run);
-        } catch (const TopologyFailure&) { // too few sites for a triangle
-            if (!small) throw;
-        }
-        MeshQuality got = small || holding ? measured(part) : MeshQuality{};
-        if (holding && run.crease_sites > 0) {
-            const long defects = surface_defects(in, got);
-            if (defects > 0) {
-                RemeshParams snapped = params;
-                snapped.hold_creases = false;
-                RemeshReport again;
-                Mesh other;
-                try {
-                    other = remesh_piece(piece, seed, snapped, to_unit, spacing, clock, progress, again);
-                } catch (const TopologyFailure&) { // no triangle: the held run stands
-                }
-                const MeshQuality other_got = measured(other);
-                if (surface_defects(in, other_got) < defects) {
-                    part = std::move(other);
-                    got = other_got;
-                    run = std::move(again);
-                    run.parts_unheld = 1;
-                }
-            }
-        }
-        if (!small || keeps_piece(in, got)) {
-            add_counts(report, run);
-            return part;
+        PieceRun run = remesh_soundly(piece, seed, params, to_unit, spacing, unit_area, sites_wanted, input, small,
+                                      clock, progress);
+        if (!small || keeps_piece(in, run.quality)) {
+            add_counts(report, run.report);
+            return std::move(run.mesh);
         }
         const long more = 2 * piece.sites;
         if (more > std::max(64L, sites_wanted / 10) || more > retry_sites) {
@@ -640,16 +732,12 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     }
 
     Mesh& out = result.mesh;
-    long retry_sites = sites_wanted; // remesh_one_of_many's retries: at most one more run's worth
+    long retry_sites = sites_wanted; // remesh_or_keep's retries: at most one more run's worth
     int furthest = 0;                // the optimiser's progress shown so far, over all pieces
     for (size_t k = 0; k < pieces.size(); ++k) {
         Piece& piece = pieces[k];
-        if (pieces.size() == 1) {
-            out = remesh_piece(piece, params.seed, params, to_unit, spacing, clock, progress, report);
-            break;
-        }
         // The optimiser's progress as one run over all pieces, each the same share; a piece
-        // remeshed again (remesh_one_of_many) holds the bar where it was rather than take it back.
+        // remeshed again (remesh_or_keep) holds the bar where it was rather than take it back.
         const ProgressCallback piece_progress =
             progress ? ProgressCallback([&progress, &furthest, k, n = static_cast<int>(pieces.size())](const Progress& p) {
                 Progress all = p;
@@ -660,10 +748,10 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
                 return progress(all);
             })
                      : ProgressCallback();
-        append(out, remesh_one_of_many(piece, params.seed + k, params, to_unit, spacing, input_area, sites_wanted,
-                                       retry_sites, clock, piece_progress, pieces.size() == 1 ? &report.input : nullptr,
-                                       report));
-        piece = Piece{}; // its copies, surface and tree freed
+        append(out, remesh_or_keep(piece, params.seed + k, params, to_unit, spacing, unit_area, input_area,
+                                       sites_wanted, retry_sites, clock, piece_progress,
+                                       pieces.size() == 1 ? &report.input : nullptr, report));
+        if (pieces.size() > 1) piece = Piece{}; // its copies, surface and tree freed; the only one's tree serves below
     }
     if (out.triangles.rows() == 0)
         throw TopologyFailure("no part of the surface came out: too few vertices for this surface");

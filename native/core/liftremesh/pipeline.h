@@ -23,7 +23,9 @@ struct RemeshResult {
 //!     (size_field.h) in the weights, and with an edge length the vertex count it gives;
 //!  3. random sites, L-BFGS on the objective of Eq. 25 in two phases (6.2.2); with hold_creases,
 //!     sites held on the creases, and a piece whose surface they break (a defect its input has
-//!     not after step 5) remeshed again with its creases snapped to (report.parts_unheld);
+//!     not after step 5) remeshed again with its creases snapped to (report.parts_unheld); a
+//!     piece whose surface is still broken lifted again with normals over balls a quarter of
+//!     the spacing wide and remeshed (report.parts_eta_reduced), the sounder run kept;
 //!  4. restricted Delaunay triangulation (Eq. 4) projected to R^3 (Algorithm 3, line 11);
 //!  5. a clean oriented manifold (repair.h), holes the input does not have filled (5.2.2);
 //!     on an open input, the output's boundary vertices put onto the input's boundary (boundary_snap.h);

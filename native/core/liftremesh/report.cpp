@@ -169,6 +169,11 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         std::to_string(report.parts) + (report.parts == 1 ? " part" : " parts") +
                         " were snapped to, not held: sites held on them broke the surface (creases closer "
                         "together than the target edge length); ask for a smaller edge length to hold them");
+    if (report.parts_eta_reduced > 0)
+        found.push_back("the normals of " + std::to_string(report.parts_eta_reduced) + " of the source's " +
+                        std::to_string(report.parts) + (report.parts == 1 ? " part" : " parts") +
+                        " were averaged over balls a quarter of the target edge length wide, not eta: with eta's "
+                        "the surface broke (members or holes smaller than eta)");
     if (out.boundary_loops > in.boundary_loops)
         found.push_back("the result has " + std::to_string(out.boundary_loops) + " boundary loops, the source " +
                         std::to_string(in.boundary_loops) + ": holes the source does not have");
@@ -214,6 +219,7 @@ std::string to_json(const RemeshReport& report) {
                         {"energy_final", json_number(report.energy_final)},
                         {"crease_sites", json_number(report.crease_sites)},
                         {"parts_unheld", json_number(report.parts_unheld)},
+                        {"parts_eta_reduced", json_number(report.parts_eta_reduced)},
                         {"sites_split", json_number(report.sites_split)},
                         {"holes_filled", json_number(report.holes_filled)},
                         {"triangles_removed", json_number(report.triangles_removed)},

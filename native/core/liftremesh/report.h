@@ -43,6 +43,8 @@ struct RemeshReport {
     long crease_sites = 0;               //!< sites held on the creases and their corners (crease_sites.h)
     long parts_unheld = 0;               //!< parts whose creases were snapped to, not held: holding them
                                          //!< broke the part's surface (pipeline.h)
+    long parts_eta_reduced = 0;          //!< parts lifted again with normals over a smaller ball: the
+                                         //!< part's surface broke with eta's (pipeline.h)
     long sites_split = 0;                //!< sites whose restricted cell came in pieces, a vertex each (rdt.h)
     long holes_filled = 0;
     long triangles_removed = 0;          //!< by the manifold repair (repair.h), darts jutting into the holes

@@ -89,7 +89,8 @@ TEST(Remesh, CubeCornersAreVerticesWithHeldCreasesAlone) {
     EXPECT_GE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::floor(1.0 / h - 1.0)));
     EXPECT_LE(r.report.crease_sites, 8 + 12 * static_cast<long>(std::ceil(1.5 / h)));
     EXPECT_GE(r.report.output.kappa_min, 0.45);
-    EXPECT_EQ(r.report.parts_unheld, 0); // a sound result keeps its held sites
+    EXPECT_EQ(r.report.parts_unheld, 0);      // a sound result keeps its held sites
+    EXPECT_EQ(r.report.parts_eta_reduced, 0); // and its lifting
     params.hold_creases = false;
     EXPECT_EQ(remesh(input, params).report.crease_sites, 0);
     params = params_with(1200, 1.0);
@@ -431,7 +432,7 @@ TEST(Remesh, AClosedPartThinnerThanItsCellsKeepsItsTriangles) {
 // The optimiser's progress over several pieces is one run, each piece the same share: it never
 // steps back, not even while a piece is remeshed again (it restarted within its share before),
 // and it stays within the total. A ring 0.2 across, of tube 0.005, beside a sphere, at 1000
-// vertices: its share (37 sites) fails and is tried again with twice as many (remesh_one_of_many).
+// vertices: its share (37 sites) fails and is tried again with twice as many (remesh_or_keep, pipeline.cpp).
 TEST(Remesh, ProgressOverPiecesNeverStepsBack) {
     Mesh ring = test::make_torus(0.1, 0.005, 48, 8);
     ring.points.col(0).array() += 3.0;
