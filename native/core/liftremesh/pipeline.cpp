@@ -167,7 +167,8 @@ void lift_piece(Piece& piece, const RemeshParams& params, const UnitBallTransfor
     const Mesh& input = *piece.input;
     const Mesh& unit = *piece.unit;
     // One tree over the input serves the normals and, later, the thin walls and the projections
-    // back onto it: the unit-ball copy's normals at eta are the input's at eta times the scale.
+    // back onto it (and a second lifting, remesh_soundly): the unit-ball copy's normals at eta
+    // are the input's at eta times the scale.
     if (!piece.tree) piece.tree = std::make_unique<AabbTree>(input);
     const Points normals = vertex_normals(input, *piece.tree, params.eta * to_unit.scale); // Section 5.2.1
     const Eigen::VectorXd turn = triangle_normal_turn(unit, normals, params.eta); // Eqs. 22-23
@@ -493,8 +494,8 @@ long surface_defects(const MeshQuality& in, const MeshQuality& out) {
 // has not: the Euler characteristic the report expects of it, no edge folded shut) and with no
 // triangle worse than its input's worst, or kKappaFloor: else its input's triangles are better.
 bool keeps_piece(const MeshQuality& in, const MeshQuality& out) {
-    return out.triangles > 0 && out.boundary_edges == 0 && out.nonmanifold_edges == 0 && surface_defects(in, out) == 0 &&
-           out.kappa_min >= std::min(in.kappa_min, kKappaFloor);
+    return out.triangles > 0 && out.boundary_edges == 0 && out.nonmanifold_edges == 0 &&
+           surface_defects(in, out) == 0 && out.kappa_min >= std::min(in.kappa_min, kKappaFloor);
 }
 
 // A piece's output measured; an empty one (a run that made no triangle) has no triangle.
@@ -749,9 +750,9 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
             })
                      : ProgressCallback();
         append(out, remesh_or_keep(piece, params.seed + k, params, to_unit, spacing, unit_area, input_area,
-                                       sites_wanted, retry_sites, clock, piece_progress,
-                                       pieces.size() == 1 ? &report.input : nullptr, report));
-        if (pieces.size() > 1) piece = Piece{}; // its copies, surface and tree freed; the only one's tree serves below
+                                   sites_wanted, retry_sites, clock, piece_progress,
+                                   pieces.size() == 1 ? &report.input : nullptr, report));
+        if (pieces.size() > 1) piece = Piece{}; // its copies, surface and tree freed (the only one's serves below)
     }
     if (out.triangles.rows() == 0)
         throw TopologyFailure("no part of the surface came out: too few vertices for this surface");
