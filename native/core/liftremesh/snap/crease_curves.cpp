@@ -118,9 +118,8 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
 
     const CompressedRows fans = vertex_triangles(mesh);
     auto vertices = [&mesh](long f) { return triangle_vertices(mesh, f); };
-    auto corner = [&mesh](long f, int j) -> Eigen::Vector3d { return mesh.points.row(mesh.triangles(f, j)).transpose(); };
-    auto unit_normal = [&](long f) { return triangle_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
-    auto kappa = [&](long f) { return triangle_kappa(corner(f, 0), corner(f, 1), corner(f, 2)); };
+    auto unit_normal = [&](long f) { return triangle_normal(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
+    auto kappa = [&](long f) { return triangle_kappa(corner(mesh, f, 0), corner(mesh, f, 1), corner(mesh, f, 2)); };
     // The triangles a fan's may cross, from a tree of the mesh as it was: no vertex moves
     // farther than max_move, so a box grown by that finds every one.
     const AabbTree tree(mesh);
@@ -129,7 +128,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
         long count = 0;
         for (const int32_t* f = fans.begin(v); f != fans.end(v); ++f) {
             const std::array<int32_t, 3> fi = vertices(*f);
-            const std::array<Eigen::Vector3d, 3> fc = {corner(*f, 0), corner(*f, 1), corner(*f, 2)};
+            const std::array<Eigen::Vector3d, 3> fc = {corner(mesh, *f, 0), corner(mesh, *f, 1), corner(mesh, *f, 2)};
             const Eigen::Vector3d grow = Eigen::Vector3d::Constant(params.max_move);
             near_triangles.clear();
             tree.triangles_meeting_box(fc[0].cwiseMin(fc[1]).cwiseMin(fc[2]) - grow, fc[0].cwiseMax(fc[1]).cwiseMax(fc[2]) + grow,
@@ -137,7 +136,7 @@ CreaseCurveStats move_onto_crease_curves(Mesh& mesh, const Mesh& input, const Ac
             for (int32_t g : near_triangles) {
                 if (g == *f) continue;
                 const std::array<int32_t, 3> gi = vertices(g);
-                count += triangles_cross(fi, fc, gi, {corner(g, 0), corner(g, 1), corner(g, 2)});
+                count += triangles_cross(fi, fc, gi, {corner(mesh, g, 0), corner(mesh, g, 1), corner(mesh, g, 2)});
             }
         }
         return count;
