@@ -634,9 +634,9 @@ PieceRun remesh_soundly(Piece& piece, std::uint64_t seed, const RemeshParams& pa
 // `whole`: the input's quality when the piece is all of it (the report's, measured once: on a
 // million triangles it takes seconds).
 Mesh remesh_or_keep(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
-                        double spacing, double unit_area, double input_area, long sites_wanted, long& retry_sites,
-                        StageClock& clock, const ProgressCallback& progress, const MeshQuality* whole,
-                        RemeshReport& report) {
+                    double spacing, double unit_area, double input_area, long sites_wanted, long& retry_sites,
+                    StageClock& clock, const ProgressCallback& progress, const MeshQuality* whole,
+                    RemeshReport& report) {
     if (piece.sites == 0) return {}; // no triangle of positive area: nothing to remesh
     const bool small = piece.closed && surface_area(*piece.input) <= kSmallPiece * input_area;
     const MeshQuality in = whole ? *whole : measure_quality(*piece.input);

@@ -164,14 +164,17 @@ std::vector<std::string> report_warnings(const RemeshReport& report) {
                         (report.parts_kept == 1 ? " is thinner or smaller than the target edge length and keeps"
                                                 : " are thinner or smaller than the target edge length and keep") +
                         " the source's triangles; ask for more vertices or a smaller edge length");
+    // "n of the source's N parts", for the parts remeshed again another way.
+    auto of_the_parts = [&report](long n) {
+        return std::to_string(n) + " of the source's " + std::to_string(report.parts) +
+               (report.parts == 1 ? " part" : " parts");
+    };
     if (report.parts_unheld > 0)
-        found.push_back("the creases of " + std::to_string(report.parts_unheld) + " of the source's " +
-                        std::to_string(report.parts) + (report.parts == 1 ? " part" : " parts") +
+        found.push_back("the creases of " + of_the_parts(report.parts_unheld) +
                         " were snapped to, not held: sites held on them broke the surface (creases closer "
                         "together than the target edge length); ask for a smaller edge length to hold them");
     if (report.parts_eta_reduced > 0)
-        found.push_back("the normals of " + std::to_string(report.parts_eta_reduced) + " of the source's " +
-                        std::to_string(report.parts) + (report.parts == 1 ? " part" : " parts") +
+        found.push_back("the normals of " + of_the_parts(report.parts_eta_reduced) +
                         " were averaged over balls a quarter of the target edge length wide, not eta: with eta's "
                         "the surface broke (members or holes smaller than eta)");
     if (out.boundary_loops > in.boundary_loops)
