@@ -111,8 +111,9 @@ FIELDS = {
     "holes_filled": "holes of the triangulation filled (those not along the input's own boundary)",
     "triangles_removed": "triangles removed by the manifold repair, darts jutting into the holes it fills, and "
                          "flaps beyond an open input's boundary",
-    "edges_collapsed": "short edges collapsed, pairs of triangles folded shut taken out, and edges of "
-                       "triangles under kappa 0.3 collapsed",
+    "edges_collapsed": "short edges collapsed, pairs of triangles folded shut taken out, edges of "
+                       "triangles under kappa 0.3 collapsed, and tents of three triangles passing through "
+                       "the surface taken out",
     "vertices_inserted": "input points inserted where a sharp edge came out cut off, at an acute "
                          "corner of an open input's boundary, or on the longest edge of a triangle "
                          "under kappa 0.3",

@@ -777,6 +777,7 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
         untangle(out, Reference{input, input_tree}, step_settings(spacing, to_unit.scale, sites_wanted).untangle);
     report.edges_flipped += untangled.flipped;
     report.vertices_moved += untangled.moved;
+    report.edges_collapsed += untangled.removed; // a tent's apex goes as onto a corner of its rim
     const std::vector<std::pair<int32_t, int32_t>> crossings = std::move(untangled.crossings);
     const AabbTree output_tree = std::move(*untangled.tree);
     clock.end();

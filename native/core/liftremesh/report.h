@@ -50,8 +50,8 @@ struct RemeshReport {
     long triangles_removed = 0;          //!< by the manifold repair (repair.h), darts jutting into the holes
                                          //!< it fills (hole_filling.h), and flaps beyond an open input's
                                          //!< boundary (boundary_snap.h)
-    long edges_collapsed = 0;            //!< short edges, pairs folded shut and edges of triangles under kappa 0.3
-                                         //!< collapsed (edge_collapse.h)
+    long edges_collapsed = 0;            //!< short edges, folded pairs and edges of triangles under kappa 0.3
+                                         //!< collapsed (edge_collapse.h), crossing tents (untangle.h)
     long vertices_inserted = 0;          //!< input points inserted where a sharp edge (hausdorff_refinement.h) or an
                                          //!< acute corner of an open boundary (boundary_snap.h) was cut off, or
                                          //!< where a triangle under kappa 0.3 had its longest edge split (edge_collapse.h)

@@ -23,9 +23,11 @@ struct PassTriangles {
     const AabbTree& tree;
     std::vector<char> changed; // per triangle
     std::vector<int> changed_list;
+    std::vector<char> gone; // per triangle: taken out of the mesh by the pass
     std::vector<int32_t> found; // scratch
 
-    PassTriangles(const EditableMesh& m, const AabbTree& t) : mesh(m), tree(t), changed(m.tris.size(), 0) {}
+    PassTriangles(const EditableMesh& m, const AabbTree& t)
+        : mesh(m), tree(t), changed(m.tris.size(), 0), gone(m.tris.size(), 0) {}
 
     void mark_changed(int t) {
         if (!changed[static_cast<size_t>(t)]) changed_list.push_back(t);
@@ -48,7 +50,7 @@ struct PassTriangles {
         }
         long count = crossings_among(mesh, tris);
         auto test = [&](int g) {
-            if (std::find(skip.begin(), skip.end(), g) != skip.end()) return;
+            if (gone[static_cast<size_t>(g)] || std::find(skip.begin(), skip.end(), g) != skip.end()) return;
             const Tri& t = mesh.tris[static_cast<size_t>(g)];
             const std::array<Eigen::Vector3d, 3> pt = mesh.corners(t);
             for (size_t i = 0; i < tris.size(); ++i) count += triangles_cross(tris[i], at[i], t, pt) ? 1 : 0;
@@ -99,6 +101,20 @@ long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     return flips;
 }
 
+//! The vertices of the triangles of `crossings` that are not on a border, each once, in index
+//! order: the candidates of the moves and of the tents' removal.
+std::vector<int32_t> inner_vertices_of(const EditableMesh& edit, const std::vector<char>& on_border,
+                                       const std::vector<std::pair<int32_t, int32_t>>& crossings) {
+    std::vector<int32_t> candidates;
+    for (const auto& [s, t] : crossings)
+        for (int32_t f : {s, t})
+            for (int32_t v : edit.tris[static_cast<size_t>(f)])
+                if (!on_border[static_cast<size_t>(v)]) candidates.push_back(v);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    return candidates;
+}
+
 //! A vertex's fan as the move rules weigh it (see untangle()).
 struct FanState {
     double worst_kappa = 2.0; // its worst triangle's kappa
@@ -120,6 +136,16 @@ FanState fan_state(const EditableMesh& mesh, const std::vector<Tri>& fan, const 
     return state;
 }
 
+//! Whether the triangles an edit makes (`now`) may replace those it takes (`was`) under the move
+//! rules (see untangle()), folds aside: none of zero area, no more facing against the input, the
+//! worst no worse than both the old worst and the floor, and none farther from the input than the
+//! old farthest and the tolerance.
+bool keeps_move_rules(const FanState& was, const FanState& now, const UntangleParams& params) {
+    return !now.degenerate && now.against <= was.against &&
+           now.worst_kappa >= std::min(was.worst_kappa, params.kappa_floor) &&
+           now.farthest <= std::max(was.farthest, params.tolerance);
+}
+
 //! One pass of moves over the inner vertices of the triangles of `crossings`, in index order
 //! (see untangle()), written into `mesh`. Returns the moves.
 long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
@@ -127,14 +153,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     EditableMesh edit(mesh);
     PassTriangles triangles(edit, mesh_tree);
     const CompressedRows fans = edit.fans();
-    const std::vector<char> on_border = edit.border_points();
-    std::vector<int32_t> candidates;
-    for (const auto& [s, t] : crossings)
-        for (int32_t f : {s, t})
-            for (int32_t v : edit.tris[static_cast<size_t>(f)])
-                if (!on_border[static_cast<size_t>(v)]) candidates.push_back(v);
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    const std::vector<int32_t> candidates = inner_vertices_of(edit, edit.border_points(), crossings);
 
     const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
     long moves = 0;
@@ -168,9 +187,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
             const long after = triangles.crossings_of(fan_tris, fan);
             if (after > fewest) continue;
             const FanState now = fan_state(edit, fan_tris, input);
-            if (now.degenerate || now.against > was.against || folded_edges_among(edit, region, triangles_of) > folded_before ||
-                !(now.worst_kappa >= std::min(was.worst_kappa, params.kappa_floor)) ||
-                !(now.farthest <= std::max(was.farthest, params.tolerance)))
+            if (!keeps_move_rules(was, now, params) || folded_edges_among(edit, region, triangles_of) > folded_before)
                 continue;
             if (after < fewest || now.worst_kappa > best_kappa) {
                 fewest = after;
@@ -188,6 +205,90 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     }
     if (moves > 0) edit.write_to(mesh);
     return moves;
+}
+
+//! One pass over the inner vertices of the triangles of `crossings` with three triangles round
+//! them, in index order (see untangle()): each such tent replaced by the triangle of its rim
+//! where the rules of a move allow it, written into `mesh` with the vertices left unreferenced
+//! removed. Returns the vertices removed.
+long tent_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
+               const std::vector<std::pair<int32_t, int32_t>>& crossings, const UntangleParams& params) {
+    EditableMesh edit(mesh);
+    PassTriangles triangles(edit, mesh_tree);
+    const CompressedRows fans = edit.fans();
+    long removed = 0;
+    std::vector<int> fan, region;
+    std::vector<Tri> fan_tris;
+    // A vertex's triangles, those taken out already left out.
+    auto present = [&](int32_t w) {
+        std::vector<int> out;
+        for (const int32_t* t = fans.begin(w); t != fans.end(w); ++t)
+            if (!triangles.gone[static_cast<size_t>(*t)]) out.push_back(*t);
+        return out;
+    };
+    // The apexes and rims of the tents taken out: the fans of the others are still `fans`.
+    std::vector<char> touched(edit.points.size(), 0);
+    for (int32_t v : inner_vertices_of(edit, edit.border_points(), crossings)) {
+        if (touched[static_cast<size_t>(v)]) continue;
+        fan = present(v);
+        if (fan.size() != 3) continue;
+        // Each triangle rotated to start at v runs v -> x -> y; the rim runs x -> y round it.
+        std::array<int32_t, 3> from{}, to{};
+        fan_tris.clear();
+        for (size_t i = 0; i < 3; ++i) {
+            const Tri& t = edit.tris[static_cast<size_t>(fan[i])];
+            fan_tris.push_back(t);
+            const int j = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+            from[i] = t[(j + 1) % 3];
+            to[i] = t[(j + 2) % 3];
+        }
+        auto next = [&](int32_t x) {
+            for (size_t i = 0; i < 3; ++i)
+                if (from[i] == x) return to[i];
+            return int32_t{-1};
+        };
+        const Tri rim{from[0], next(from[0]), next(next(from[0]))};
+        if (rim[1] < 0 || rim[2] < 0 || next(rim[2]) != rim[0] || rim[1] == rim[0] || rim[2] == rim[0]) continue;
+        if (std::any_of(rim.begin(), rim.end(), [&](int32_t w) { return touched[static_cast<size_t>(w)] != 0; }))
+            continue;
+        // The rim's triangle must not be one of the mesh already (a tetrahedron's last faces).
+        bool exists = false;
+        for (int f : present(rim[0])) {
+            const Tri& t = edit.tris[static_cast<size_t>(f)];
+            exists = exists || (std::find(t.begin(), t.end(), rim[1]) != t.end() &&
+                                std::find(t.begin(), t.end(), rim[2]) != t.end());
+        }
+        if (exists) continue;
+        const long before = triangles.crossings_of(fan_tris, fan);
+        if (before == 0 || !(triangles.crossings_of({rim}, fan) < before)) continue;
+        const FanState was = fan_state(edit, fan_tris, input), now = fan_state(edit, {rim}, input);
+        if (!keeps_move_rules(was, now, params)) continue;
+        // No more folded edges than the tent had: with the rim's triangle in the first one's place.
+        const TrianglesOf triangles_of = [&](int32_t w) {
+            region = present(w);
+            return std::make_pair(region.data(), region.data() + region.size());
+        };
+        const int folded_before = folded_edges_among(edit, fan, triangles_of);
+        edit.tris[static_cast<size_t>(fan[0])] = rim;
+        triangles.gone[static_cast<size_t>(fan[1])] = triangles.gone[static_cast<size_t>(fan[2])] = 1;
+        if (folded_edges_among(edit, {fan[0]}, triangles_of) > folded_before) {
+            edit.tris[static_cast<size_t>(fan[0])] = fan_tris[0];
+            triangles.gone[static_cast<size_t>(fan[1])] = triangles.gone[static_cast<size_t>(fan[2])] = 0;
+            continue;
+        }
+        for (int f : fan) triangles.mark_changed(f);
+        for (int32_t w : {v, rim[0], rim[1], rim[2]}) touched[static_cast<size_t>(w)] = 1;
+        ++removed;
+    }
+    if (removed == 0) return 0;
+    edit.write_to(mesh);
+    Triangles kept(mesh.triangles.rows() - 2 * removed, 3);
+    Eigen::Index row = 0;
+    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
+        if (!triangles.gone[static_cast<size_t>(f)]) kept.row(row++) = mesh.triangles.row(f);
+    mesh.triangles = std::move(kept);
+    remove_unreferenced_vertices(mesh);
+    return removed;
 }
 
 } // namespace
@@ -229,6 +330,17 @@ UntangleStats untangle(Mesh& mesh, const Reference& reference, const UntanglePar
             recount();
         }
         if (kappa_floor == params.kappa_floor) break;
+    }
+    // Last, for the crossings that no flip or move undoes, the tents of three triangles round a
+    // vertex taken out, at the same two floors.
+    for (const double kappa_floor : {std::max(params.preferred_kappa_floor, params.kappa_floor), params.kappa_floor}) {
+        at.kappa_floor = kappa_floor;
+        for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
+            const long tents = tent_pass(mesh, tree(), input, crossings, at);
+            if (tents == 0) break;
+            stats.removed += tents;
+            recount();
+        }
     }
     stats.crossings = std::move(crossings);
     tree();

@@ -20,8 +20,14 @@
 //   crossings left, down to the last resort's (0.2). With the lower floor alone, a flip that
 //   undoes one crossing with a sliver can leave the crossings beside it to moves that no longer
 //   undo them, where moves at the higher floor undo them all.
-// Nothing changes on a mesh without crossings; no vertex is added or removed, and no vertex on a
-// border moves; topology and orientation are kept.
+// - Last, for the crossings that neither undoes at either floor, tents taken out: an inner vertex
+//   of a crossing triangle with three triangles round it, where a wall thinner than the edge
+//   had a vertex of its far side joined to three of its near side's, is removed, the triangle
+//   of its rim in their place, if that leaves fewer crossings under the rules of a move (and
+//   the rim's triangle is not one of the mesh already). The apex lies on the input, on the
+//   wrong side: no move onto the input takes it back.
+// Nothing changes on a mesh without crossings; no vertex is added, only a tent's is removed, and
+// no vertex on a border moves; topology and orientation are kept.
 #pragma once
 
 #include "liftremesh/edit/quality_floors.h"
@@ -55,14 +61,15 @@ struct UntangleParams {
 struct UntangleStats {
     long flipped = 0; //!< edge flips
     long moved = 0;   //!< vertex moves
+    long removed = 0; //!< vertices removed with the tent of three triangles round them
     std::vector<std::pair<int32_t, int32_t>> crossings; //!< what is left, as self_intersecting_pairs
     //! AabbTree(mesh) of the mesh as left.
     std::optional<AabbTree> tree;
 };
 
-//! Finds the pairs of triangles of `mesh` that cross (self_intersecting_pairs), then flips edges
-//! and moves vertices of the crossing triangles as above, pass after pass while crossings are
-//! left and a pass changes something. The crossings left and the tree of the mesh as left come
+//! Finds the pairs of triangles of `mesh` that cross (self_intersecting_pairs), then flips edges,
+//! moves vertices and takes out tents of the crossing triangles as above, pass after pass while
+//! crossings are left and a pass changes something. The crossings left and the tree of the mesh as left come
 //! back in the stats, for the report.
 //! \throw InvalidInput if the tolerance is not positive and finite, passes is negative, or an
 //! index is out of range.
