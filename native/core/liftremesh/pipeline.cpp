@@ -757,9 +757,6 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     if (out.triangles.rows() == 0)
         throw TopologyFailure("no part of the surface came out: too few vertices for this surface");
 
-    // Closed pieces that stand for no part of the input (stray_components.h): bubbles the
-    // triangulation closed where a member is thinner than the cells. Counted against the whole
-    // input, once every piece is in; before the untangling, which then sees what is handed on.
     // The whole input's tree: the only piece's, or built once the pieces' trees are freed.
     const AabbTree input_tree = pieces.size() == 1 ? std::move(*pieces[0].tree) : AabbTree(input);
     pieces.clear();
