@@ -311,36 +311,32 @@ UntangleStats untangle(Mesh& mesh, const Reference& reference, const UntanglePar
         stats.tree.reset();
         crossings = self_intersecting_pairs(mesh, tree());
     };
+    // Passes of one kind of edit at the floor of `at`, while crossings are left and a pass makes one.
+    UntangleParams at = params; // the passes' floor: the preferred one, then the last resort's
+    auto run_passes = [&](auto pass_of, long& made) {
+        for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
+            const long edits = pass_of(mesh, tree(), input, crossings, at);
+            if (edits == 0) break;
+            made += edits;
+            recount();
+        }
+    };
+    const double preferred = std::max(params.preferred_kappa_floor, params.kappa_floor);
+    const std::vector<double> floors = preferred > params.kappa_floor ? std::vector<double>{preferred, params.kappa_floor}
+                                                                     : std::vector<double>{params.kappa_floor};
     // Edits that keep the preferred floor first, then, for the crossings they leave, those down
     // to the last resort's; at each floor flips first, since they move no vertex, then moves for
     // what they leave.
-    UntangleParams at = params; // the passes' floor: the preferred one, then the last resort's
-    for (const double kappa_floor : {std::max(params.preferred_kappa_floor, params.kappa_floor), params.kappa_floor}) {
+    for (const double kappa_floor : floors) {
         at.kappa_floor = kappa_floor;
-        for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-            const long flips = untangle_pass(mesh, tree(), input, crossings, at);
-            if (flips == 0) break;
-            stats.flipped += flips;
-            recount();
-        }
-        for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-            const long moves = move_pass(mesh, tree(), input, crossings, at);
-            if (moves == 0) break;
-            stats.moved += moves;
-            recount();
-        }
-        if (kappa_floor == params.kappa_floor) break;
+        run_passes(untangle_pass, stats.flipped);
+        run_passes(move_pass, stats.moved);
     }
     // Last, for the crossings that no flip or move undoes, the tents of three triangles round a
-    // vertex taken out, at the same two floors.
-    for (const double kappa_floor : {std::max(params.preferred_kappa_floor, params.kappa_floor), params.kappa_floor}) {
+    // vertex taken out, at the same floors.
+    for (const double kappa_floor : floors) {
         at.kappa_floor = kappa_floor;
-        for (int pass = 0; pass < params.passes && !crossings.empty(); ++pass) {
-            const long tents = tent_pass(mesh, tree(), input, crossings, at);
-            if (tents == 0) break;
-            stats.removed += tents;
-            recount();
-        }
+        run_passes(tent_pass, stats.removed);
     }
     stats.crossings = std::move(crossings);
     tree();
