@@ -69,8 +69,8 @@ struct UntangleStats {
 
 //! Finds the pairs of triangles of `mesh` that cross (self_intersecting_pairs), then flips edges,
 //! moves vertices and takes out tents of the crossing triangles as above, pass after pass while
-//! crossings are left and a pass changes something. The crossings left and the tree of the mesh as left come
-//! back in the stats, for the report.
+//! crossings are left and a pass changes something. The crossings left and the tree of the mesh
+//! as left come back in the stats, for the report.
 //! \throw InvalidInput if the tolerance is not positive and finite, passes is negative, or an
 //! index is out of range.
 UntangleStats untangle(Mesh& mesh, const Reference& input, const UntangleParams& params);
