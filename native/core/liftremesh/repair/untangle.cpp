@@ -103,8 +103,9 @@ long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
 
 //! The vertices of the triangles of `crossings` that are not on a border, each once, in index
 //! order: the candidates of the moves and of the tents' removal.
-std::vector<int32_t> inner_vertices_of(const EditableMesh& edit, const std::vector<char>& on_border,
+std::vector<int32_t> inner_vertices_of(const EditableMesh& edit,
                                        const std::vector<std::pair<int32_t, int32_t>>& crossings) {
+    const std::vector<char> on_border = edit.border_points();
     std::vector<int32_t> candidates;
     for (const auto& [s, t] : crossings)
         for (int32_t f : {s, t})
@@ -153,7 +154,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     EditableMesh edit(mesh);
     PassTriangles triangles(edit, mesh_tree);
     const CompressedRows fans = edit.fans();
-    const std::vector<int32_t> candidates = inner_vertices_of(edit, edit.border_points(), crossings);
+    const std::vector<int32_t> candidates = inner_vertices_of(edit, crossings);
 
     const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
     long moves = 0;
@@ -228,7 +229,7 @@ long tent_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     };
     // The apexes and rims of the tents taken out: the fans of the others are still `fans`.
     std::vector<char> touched(edit.points.size(), 0);
-    for (int32_t v : inner_vertices_of(edit, edit.border_points(), crossings)) {
+    for (int32_t v : inner_vertices_of(edit, crossings)) {
         if (touched[static_cast<size_t>(v)]) continue;
         fan = present(v);
         if (fan.size() != 3) continue;
@@ -282,11 +283,7 @@ long tent_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     }
     if (removed == 0) return 0;
     edit.write_to(mesh);
-    Triangles kept(mesh.triangles.rows() - 2 * removed, 3);
-    Eigen::Index row = 0;
-    for (Eigen::Index f = 0; f < mesh.triangles.rows(); ++f)
-        if (!triangles.gone[static_cast<size_t>(f)]) kept.row(row++) = mesh.triangles.row(f);
-    mesh.triangles = std::move(kept);
+    drop_triangles(mesh, triangles.gone);
     remove_unreferenced_vertices(mesh);
     return removed;
 }
