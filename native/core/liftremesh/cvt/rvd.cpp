@@ -326,6 +326,11 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 auto enqueue = [&](int32_t s) {
                     if (scratch_of[s].visited_stamp == p) return false;
                     scratch_of[s].visited_stamp = static_cast<int32_t>(p);
+                    // Its neighbour list is read when its polygon is clipped, after the
+                    // polygons queued before it: asked for now, it is there by then.
+                    __builtin_prefetch(&nn[s * k_cached]);
+                    __builtin_prefetch(&nn_d2[s * k_cached]);
+                    __builtin_prefetch(&nn_d2[s * k_cached] + 8);
                     queue.push_back(s);
                     return true;
                 };
@@ -360,6 +365,13 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     }
                     const int32_t k = queue.back();
                     queue.pop_back();
+                    // The nearest neighbours' rows, which the first cuts read one after the
+                    // other, asked for at once: their loads overlap instead of waiting in turn.
+                    for (int j = 0; j < std::min(k_cached, 8); ++j) {
+                        const int32_t l = nn[k * k_cached + j];
+                        __builtin_prefetch(sites.row(l).data());
+                        __builtin_prefetch(&scratch_of[l]);
+                    }
                     const PlanarSite vk = planar(k);
                     const double off_plane2 = vk.off_plane2();
                     poly->n = 0;
@@ -387,12 +399,14 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                         return stop_d2;
                     };
                     auto beyond_security = [&](double d2) { return d2 > 4.0 * r2 && d2 > security_d2(); };
-                    const Eigen::Vector3d pk = positions.row(k).transpose();
+                    // From the sites' rows, which planar() reads next, not from `positions`:
+                    // one row in the cache for each neighbour instead of two.
+                    const Eigen::Vector3d pk = sites.row(k).template head<3>().transpose();
                     // Applies the bisector of k and l if l is near enough to cut the polygon.
                     enum Outcome { kGoOn, kEmpty, kFull };
                     auto cut_by = [&](int32_t l) {
                         ++work;
-                        const double d2 = (positions.row(l).transpose() - pk).squaredNorm();
+                        const double d2 = (sites.row(l).template head<3>().transpose() - pk).squaredNorm();
                         if (d2 > 4.0 * r2) return kGoOn; // too far to cut this polygon
                         // Coincident sites: the lower index owns the cell.
                         if (d2 == 0.0 && lifted_d2(l, sites.row(k).data()) == 0.0) {
