@@ -330,7 +330,7 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                     // polygons queued before it: asked for now, it is there by then.
                     __builtin_prefetch(&nn[s * k_cached]);
                     __builtin_prefetch(&nn_d2[s * k_cached]);
-                    __builtin_prefetch(&nn_d2[s * k_cached] + 8);
+                    if (k_cached > 8) __builtin_prefetch(&nn_d2[s * k_cached + 8]); // its second line
                     queue.push_back(s);
                     return true;
                 };
