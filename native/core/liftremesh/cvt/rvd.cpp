@@ -326,8 +326,8 @@ void compute_rvd_fixed(const LiftedSurface& surface, const LiftedPoints& sites, 
                 auto enqueue = [&](int32_t s) {
                     if (scratch_of[s].visited_stamp == p) return false;
                     scratch_of[s].visited_stamp = static_cast<int32_t>(p);
-                    // Its neighbour list is read when its polygon is clipped, after the
-                    // polygons queued before it: asked for now, it is there by then.
+                    // Its neighbour list is read when its turn in the queue comes: asked for
+                    // now, its loads overlap the work done until then.
                     __builtin_prefetch(&nn[s * k_cached]);
                     __builtin_prefetch(&nn_d2[s * k_cached]);
                     if (k_cached > 8) __builtin_prefetch(&nn_d2[s * k_cached + 8]); // its second line
