@@ -304,6 +304,21 @@ void share_sites(std::vector<Piece>& pieces, long wanted) {
         if (mass[k] > 0.0) pieces[k].sites = std::max(pieces[k].sites, 4L);
 }
 
+// The triangles under the floor mended (edge_collapse.h), then the edges round the vertices
+// its splits added flipped where that raises them (quality_polish.h); counts added to `report`.
+void mend_poor(Mesh& out, const Reference& reference, const QualityPolishParams& polish, RemeshReport& report) {
+    const PoorTriangleStats mended = mend_poor_triangles(out, reference);
+    report.edges_collapsed += mended.collapsed;
+    report.vertices_inserted += mended.split;
+    report.edges_flipped += mended.flipped;
+    if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
+        std::vector<int32_t> added;
+        for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
+            added.push_back(static_cast<int32_t>(v));
+        report.edges_flipped += flip_around(out, reference, polish, added);
+    }
+}
+
 // Optimises the sites of one piece, triangulates them and repairs the result (all but the
 // untangling, which sees every piece at once), in input units; adds its counts to the report.
 Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
@@ -430,15 +445,7 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     report.edges_flipped += onto_crease.flipped + polished.flipped;
     report.vertices_moved += onto_crease.moved + polished.moved;
     report.edges_collapsed += collapse_folded_pairs(out, reference, steps.folded_pairs).collapsed;
-    const PoorTriangleStats mended = mend_poor_triangles(out, reference);
-    report.edges_collapsed += mended.collapsed;
-    report.vertices_inserted += mended.split;
-    if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
-        std::vector<int32_t> added;
-        for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
-            added.push_back(static_cast<int32_t>(v));
-        report.edges_flipped += flip_around(out, reference, steps.quality_polish, added);
-    }
+    mend_poor(out, reference, steps.quality_polish, report);
     // Last, as every step before keeps the surface on the input: the vertices on the chords of a
     // curved crease onto the curve (crease_curves.h), with the explicit creases only.
     if (params.feature_angle < 180.0) {

@@ -276,6 +276,46 @@ TEST(PoorTriangles, APoorTriangleOfBoundaryVerticesHasItsLongEdgeSplit) {
     EXPECT_EQ(is.boundary_edges, 4);
 }
 
+TEST(PoorTriangles, ASplitWhoseHalfIsPoorHasThatHalfsRimFlipped) {
+    // A strip's triangle a-b-c (kappa 0.299) whose apex c stands over a-b near a, every vertex on
+    // the boundary: no collapse. Split at the middle m of a-b, the half m-b-c is worse (0.224), so
+    // the split alone is refused; flipping b-c with the triangle b-z-c beyond it makes m-b-z and
+    // m-z-c instead (0.87 and 0.74), as a mesh with a vertex more along the strip has.
+    const Mesh input = test::make_mesh({{0, 0, 0}, {2.84, 0, 0}, {0.77, 0.567, 0}, {1.42, -1.3, 0}, {1.57, 1.61, 0}},
+                                       {{0, 1, 2}, {1, 0, 3}, {1, 4, 2}});
+    Mesh m = input;
+    ASSERT_NEAR(test::min_kappa(m), 0.299, 0.001);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed, 0);
+    EXPECT_EQ(stats.split, 1);
+    EXPECT_EQ(stats.flipped, 1);
+    ASSERT_EQ(m.points.rows(), 6);
+    EXPECT_TRUE(m.points.row(5).isApprox(Eigen::RowVector3d(1.42, 0, 0)));
+    EXPECT_EQ(m.triangles.rows(), 5);
+    EXPECT_GT(test::min_kappa(m), 0.6);
+    const test::Topology is = test::topology(m);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, 1);
+    EXPECT_EQ(is.boundary_edges, 5);
+    EXPECT_EQ(m.points.col(2).cwiseAbs().maxCoeff(), 0.0); // still the plane
+}
+
+TEST(PoorTriangles, ASplitsFlipLeavesACreaseOnItsRim) {
+    // The same, but b-z-c turned 30 degrees about b-c: b-c is a crease, which no flip may take
+    // away, and the split alone would make a worse triangle. Nothing is done.
+    Mesh input = test::make_mesh({{0, 0, 0}, {2.84, 0, 0}, {0.77, 0.567, 0}, {1.42, -1.3, 0}, {1.57, 1.61, 0}},
+                                 {{0, 1, 2}, {1, 0, 3}, {1, 4, 2}});
+    const Eigen::Vector3d b = input.points.row(1).transpose(), c = input.points.row(2).transpose();
+    const Eigen::AngleAxisd turn(30.0 * M_PI / 180.0, (c - b).normalized());
+    input.points.row(4) = (b + turn * (input.points.row(4).transpose() - b)).transpose();
+    Mesh m = input;
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.split, 0);
+    EXPECT_EQ(stats.flipped, 0);
+    EXPECT_EQ(m.points, input.points);
+    EXPECT_EQ(m.triangles, input.triangles);
+}
+
 TEST(PoorTriangles, APoorTriangleOnACreaseHasItsCreaseEdgeSplit) {
     // The sliver's vertex 0.15 above the square, on the input: its fan is no plane a collapse
     // would keep, and its long edge (2, 1)-(3, 2) is a crease of the input, its two triangles

@@ -22,6 +22,11 @@ namespace {
 // across a crease turning by 4.6 degrees, on a chord of a curved crease of radius 6 L.
 constexpr double kAlongInput = 0.02;
 
+// The most two triangles may turn at an edge that a split's flip takes away (Collapser::split):
+// a flat face's, or a gently curved one's, where the flipped pair stays on the input as the old
+// one did; a crease's edge stays.
+constexpr double kFlatRimTurn = 15.0 * M_PI / 180.0;
+
 struct Adjacency {
     std::vector<std::vector<int32_t>> triangles_of; // per vertex, live triangles using it
     std::vector<char> alive;                        // per triangle
@@ -285,8 +290,10 @@ public:
     //! Splits the interior edge a-b at p into four triangles if none of them turns from the one it
     //! comes from by more than 45 degrees and their worst kappa is above `must_beat`; an edge
     //! whose two triangles turn by more only `along_input` (the caller found p on it: along a
-    //! crease), and not folded shut. Returns whether it did.
-    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat, bool along_input) {
+    //! crease), and not folded shut. With `with_flips`, a new triangle at or under `must_beat`
+    //! is taken if flipping its edge on the quad's rim lifts both triangles of that edge above
+    //! it (rim_flip), and that flip is made too. Returns whether it split.
+    bool split(int32_t a, int32_t b, const Eigen::Vector3d& p, double must_beat, bool along_input, bool with_flips = false) {
         const auto q = quad(a, b);
         if (!q) return false;
         const auto [f1, f2, c, d] = *q;
@@ -297,18 +304,27 @@ public:
         if (c == d || !(turn >= std::cos(M_PI / 4) || (along_input && turn > kCosFolded))) return false;
         const std::array<std::pair<int32_t, std::array<int32_t, 3>>, 4> made = {
             {{f1, {a, -1, c}}, {f1, {-1, b, c}}, {f2, {b, -1, d}}, {f2, {-1, a, d}}}};
+        std::vector<std::array<int32_t, 3>> flips; // rim edges x -> y of new triangles (m, x, y), and z
         for (const auto& [parent, t] : made) {
             Eigen::Vector3d x[3];
             for (int j = 0; j < 3; ++j) x[j] = t[j] < 0 ? p : position(mesh_, t[j]);
             const Eigen::Vector3d n = triangle_normal(x[0], x[1], x[2]), was = normal_of(mesh_, parent);
-            if (!(n.dot(was) >= std::cos(M_PI / 4)) || !(triangle_kappa(x[0], x[1], x[2]) > must_beat)) return false;
+            if (!(n.dot(was) >= std::cos(M_PI / 4))) return false;
             // Nor folds (flip_rules.h: kCosFolded) onto the triangle across its edge of the
             // quad's rim, unless its parent was folded so already (and it is no more).
-            const int32_t u = t[0] < 0 ? t[1] : t[0], v = t[2];
+            const int k = t[0] < 0 ? 0 : t[1] < 0 ? 1 : 2;
+            const int32_t u = t[(k + 1) % 3], v = t[(k + 2) % 3]; // the rim edge, u -> v
             const int32_t across = other_triangle(u, v, parent);
-            if (across < 0) continue;
-            const double turn = normal_of(mesh_, across).dot(n), turn_was = normal_of(mesh_, across).dot(was);
-            if (!(turn >= std::min(turn_was, kCosFolded))) return false;
+            if (across >= 0) {
+                const double turn = normal_of(mesh_, across).dot(n), turn_was = normal_of(mesh_, across).dot(was);
+                if (!(turn >= std::min(turn_was, kCosFolded))) return false;
+            }
+            if (triangle_kappa(x[0], x[1], x[2]) > must_beat) continue;
+            const int32_t z = with_flips ? rim_flip(u, v, parent, across, p, {a, b, c, d}, must_beat) : -1;
+            if (z < 0) return false;
+            for (const auto& [x0, y0, z0] : flips)
+                if (z0 == z) return false; // two flips would both join m to z
+            flips.push_back({u, v, z});
         }
         const auto m = static_cast<int32_t>(mesh_.points.rows());
         mesh_.points.conservativeResize(m + 1, 3);
@@ -334,10 +350,17 @@ public:
         adj_.triangles_of[a].push_back(f3 + 1);
         adj_.triangles_of[b].push_back(f3);
         ++split_;
+        // The new triangle (m, x, y) and the one across x -> y become (x, z, m) and (z, y, m).
+        for (const auto& [x, y, z] : flips)
+            if (const auto rim = quad(x, y); rim && (*rim)[2] == m && (*rim)[3] == z) {
+                flip(x, y, *rim);
+                ++flipped_;
+            }
         return true;
     }
 
     long splits() const { return split_; }
+    long flips() const { return flipped_; }
 
     //! Removes the dead triangles and the vertices no triangle uses. Returns the collapses.
     long finish() {
@@ -353,6 +376,34 @@ public:
     }
 
 private:
+    //! Whether the new triangle (m, x, y) of a split at p, whose rim edge x -> y its parent has,
+    //! may be flipped with the triangle `across` on that edge (y -> x -> z) into (x, z, m) and
+    //! (z, y, m): the edge no crease (parent and across within kFlatRimTurn), z none of the
+    //! split's corners `quad` (whose edges to m the split makes), both new triangles turned
+    //! from `across` by less than 45 degrees and above `must_beat`. Returns z, or -1 if not.
+    int32_t rim_flip(int32_t x, int32_t y, int32_t parent, int32_t across, const Eigen::Vector3d& p,
+                     const std::array<int32_t, 4>& quad, double must_beat) const {
+        if (across < 0) return -1;
+        const Eigen::Vector3d n_across = normal_of(mesh_, across);
+        if (!(normal_of(mesh_, parent).dot(n_across) >= std::cos(kFlatRimTurn))) return -1;
+        int32_t z = -1;
+        for (int32_t v : triangle_vertices(mesh_, across))
+            if (v != x && v != y) z = v;
+        if (z < 0 || std::find(quad.begin(), quad.end(), z) != quad.end()) return -1;
+        const Eigen::Vector3d px = position(mesh_, x), py = position(mesh_, y), pz = position(mesh_, z);
+        // Each new triangle with its edge that was across's, and the triangle beyond that edge.
+        const std::array<std::pair<std::array<Eigen::Vector3d, 3>, int32_t>, 2> made = {
+            {{{px, pz, p}, other_triangle(x, z, across)}, {{pz, py, p}, other_triangle(z, y, across)}}};
+        for (const auto& [t, beyond] : made) {
+            const Eigen::Vector3d n = triangle_normal(t[0], t[1], t[2]);
+            if (!(n.dot(n_across) >= std::cos(M_PI / 4)) || !(triangle_kappa(t[0], t[1], t[2]) > must_beat)) return -1;
+            // No fold onto the triangle beyond (flip_rules.h: kCosFolded) where across had none.
+            if (beyond >= 0 && !(normal_of(mesh_, beyond).dot(n) >= std::min(normal_of(mesh_, beyond).dot(n_across), kCosFolded)))
+                return -1;
+        }
+        return z;
+    }
+
     //! The live triangle other than f on edge u-v, or -1 if there is none.
     int32_t other_triangle(int32_t u, int32_t v, int32_t f) const {
         for (int32_t g : adj_.triangles_of[u]) {
@@ -373,6 +424,7 @@ private:
     std::vector<char> on_boundary_;
     long collapsed_ = 0;
     long split_ = 0;
+    long flipped_ = 0;
 };
 
 } // namespace
@@ -440,10 +492,11 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
         // off the input, 0.19 L at 45 degrees; a chord of a curved crease of radius R, L / (8 R).
         const double off_edge = (closest_point_on_segment(p.point, pa, pb) - p.point).norm();
         const bool along_input = off_edge <= kAlongInput * (pb - pa).norm();
-        collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b), along_input);
+        collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b), along_input, true);
     }
     PoorTriangleStats stats;
     stats.split = collapser.splits();
+    stats.flipped = collapser.flips();
     stats.collapsed = collapser.finish();
     return stats;
 }

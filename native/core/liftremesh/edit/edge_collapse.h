@@ -48,6 +48,7 @@ struct PoorTriangleParams {
 struct PoorTriangleStats {
     long collapsed = 0; //!< edges collapsed, each a vertex fewer
     long split = 0;     //!< edges split, each a vertex more
+    long flipped = 0;   //!< edges flipped with a split (below)
 };
 
 //! Mends each triangle under params.kappa_below, worst first, as a remesher's last sliver
@@ -64,7 +65,11 @@ struct PoorTriangleStats {
 //!   An edge whose two triangles turn by more than 45 degrees only if it runs along the input
 //!   (that point within 2% of its length from it) and is not folded shut (flip_rules.h:
 //!   kCosFolded): along a crease, its halves each stay on their faces, where the halves of a
-//!   chord across a crease, or of an edge folded shut, would stay across it or folded.
+//!   chord across a crease, or of an edge folded shut, would stay across it or folded. A new
+//!   triangle no better than the two old ones is taken if flipping its edge on the quad's rim
+//!   (whose two triangles turn by less than 15 degrees: no crease) lifts both triangles of that
+//!   edge above them, and the flip is made with the split: a triangle across a strip narrower
+//!   than its long edge, its apex near one end, leaves such a half when split alone.
 //! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
 //! vertices are removed; added ones are appended.
 //! \throw InvalidInput if a parameter is out of range or an index is.
