@@ -782,8 +782,26 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     report.edges_flipped += untangled.flipped;
     report.vertices_moved += untangled.moved;
     report.edges_collapsed += untangled.removed; // a tent's apex goes as onto a corner of its rim
-    const std::vector<std::pair<int32_t, int32_t>> crossings = std::move(untangled.crossings);
-    const AabbTree output_tree = std::move(*untangled.tree);
+    std::vector<std::pair<int32_t, int32_t>> crossings = std::move(untangled.crossings);
+    AabbTree output_tree = std::move(*untangled.tree);
+    // A tent's rim triangle, in the place of its three, can be as thin as the wall it stood
+    // through: mended as the polish mends (mend_poor), kept if that makes no crossing more.
+    if (untangled.removed > 0) {
+        Mesh mended = out;
+        RemeshReport counts;
+        mend_poor(mended, Reference{input, input_tree},
+                  step_settings(spacing, to_unit.scale, sites_wanted).quality_polish, counts);
+        AabbTree mended_tree(mended);
+        std::vector<std::pair<int32_t, int32_t>> mended_crossings = self_intersecting_pairs(mended, mended_tree);
+        if (mended_crossings.size() <= crossings.size()) {
+            out = std::move(mended);
+            output_tree = std::move(mended_tree);
+            crossings = std::move(mended_crossings);
+            report.edges_collapsed += counts.edges_collapsed;
+            report.vertices_inserted += counts.vertices_inserted;
+            report.edges_flipped += counts.edges_flipped;
+        }
+    }
     clock.end();
 
     clock.begin("quality");
