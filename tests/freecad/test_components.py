@@ -140,8 +140,9 @@ class FrameAtTheSizeItsMembersNeed(unittest.TestCase):
 
 class FrameAtTheSizeItsMembersNeedOnOtherSeeds(unittest.TestCase):
     """The same on seeds 2 and 3: the topology kept with no triangle under kappa 0.3. Seed 2 had
-    0.150 where the untangling took a tent out of the 0.6 mm wall round a corner pin hole: the
-    triangle of its rim is mended now as the polish's are (pipeline.cpp)."""
+    0.150 where the untangling took out a tent standing through the 0.6 mm wall between a pin
+    hole of the outer member (x = 261.4) and the outer face: the triangle of its rim is mended
+    now as the polish's are (pipeline.cpp)."""
 
     @classmethod
     def setUpClass(cls):
