@@ -777,8 +777,8 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     report.stray_inward_removed = strays.inward_removed;
     // Triangles passing through each other, untangled by flips (untangle.h), across pieces too.
     // The tree and the crossings left serve the report.
-    UntangleStats untangled =
-        untangle(out, Reference{input, input_tree}, step_settings(spacing, to_unit.scale, sites_wanted).untangle);
+    const StepSettings steps = step_settings(spacing, to_unit.scale, sites_wanted);
+    UntangleStats untangled = untangle(out, Reference{input, input_tree}, steps.untangle);
     report.edges_flipped += untangled.flipped;
     report.vertices_moved += untangled.moved;
     report.edges_collapsed += untangled.removed; // a tent's apex goes as onto a corner of its rim
@@ -789,17 +789,14 @@ RemeshResult remesh(const Mesh& input_raw, const RemeshParams& params, const Pro
     if (untangled.removed > 0) {
         Mesh mended = out;
         RemeshReport counts;
-        mend_poor(mended, Reference{input, input_tree},
-                  step_settings(spacing, to_unit.scale, sites_wanted).quality_polish, counts);
+        mend_poor(mended, Reference{input, input_tree}, steps.quality_polish, counts);
         AabbTree mended_tree(mended);
         std::vector<std::pair<int32_t, int32_t>> mended_crossings = self_intersecting_pairs(mended, mended_tree);
         if (mended_crossings.size() <= crossings.size()) {
             out = std::move(mended);
             output_tree = std::move(mended_tree);
             crossings = std::move(mended_crossings);
-            report.edges_collapsed += counts.edges_collapsed;
-            report.vertices_inserted += counts.vertices_inserted;
-            report.edges_flipped += counts.edges_flipped;
+            add_counts(report, counts);
         }
     }
     clock.end();

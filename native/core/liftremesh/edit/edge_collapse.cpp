@@ -315,10 +315,7 @@ public:
             const int k = t[0] < 0 ? 0 : t[1] < 0 ? 1 : 2;
             const int32_t u = t[(k + 1) % 3], v = t[(k + 2) % 3]; // the rim edge, u -> v
             const int32_t across = other_triangle(u, v, parent);
-            if (across >= 0) {
-                const double turn = normal_of(mesh_, across).dot(n), turn_was = normal_of(mesh_, across).dot(was);
-                if (!(turn >= std::min(turn_was, kCosFolded))) return false;
-            }
+            if (folds_onto(across, n, was)) return false;
             if (triangle_kappa(x[0], x[1], x[2]) > must_beat) continue;
             const int32_t z = with_flips ? rim_flip(u, v, parent, across, p, {a, b, c, d}, must_beat) : -1;
             if (z < 0) return false;
@@ -376,6 +373,15 @@ public:
     }
 
 private:
+    //! Whether a new triangle of unit normal n, on an edge of triangle g (none if g < 0), folds
+    //! onto g (flip_rules.h: kCosFolded) where the triangle it replaces, of unit normal `was`,
+    //! did not, or turns from g by more than that one did.
+    bool folds_onto(int32_t g, const Eigen::Vector3d& n, const Eigen::Vector3d& was) const {
+        if (g < 0) return false;
+        const Eigen::Vector3d ng = normal_of(mesh_, g);
+        return !(ng.dot(n) >= std::min(ng.dot(was), kCosFolded));
+    }
+
     //! Whether the new triangle (m, x, y) of a split at p, whose rim edge x -> y its parent has,
     //! may be flipped with the triangle `across` on that edge (y -> x -> z) into (x, z, m) and
     //! (z, y, m): the edge no crease (parent and across within kFlatRimTurn), z none of the
@@ -397,9 +403,7 @@ private:
         for (const auto& [t, beyond] : made) {
             const Eigen::Vector3d n = triangle_normal(t[0], t[1], t[2]);
             if (!(n.dot(n_across) >= std::cos(M_PI / 4)) || !(triangle_kappa(t[0], t[1], t[2]) > must_beat)) return -1;
-            // No fold onto the triangle beyond (flip_rules.h: kCosFolded) where across had none.
-            if (beyond >= 0 && !(normal_of(mesh_, beyond).dot(n) >= std::min(normal_of(mesh_, beyond).dot(n_across), kCosFolded)))
-                return -1;
+            if (folds_onto(beyond, n, n_across)) return -1;
         }
         return z;
     }
