@@ -252,6 +252,30 @@ class MacroApiTest(unittest.TestCase):
         self.assertEqual(result.report["output"]["folded_edges"], 0)
         self.assertGreaterEqual(result.report["output"]["kappa_min"], 0.3)
 
+    @unittest.skipUnless(os.path.exists(os.path.join(IDF_LIBS, "RLF_7030.stp")),
+                         "FreeCAD's Idflibs inductor RLF_7030.stp not found")
+    def test_the_slots_keep_their_topology_and_kappa_on_other_seeds(self):
+        """The same part, 3000 vertices, local sizing, on seeds 2-6: kappa min 0.252, 0.301,
+        0.151, 0.088 and 0.087 before. Seed 2's worst was a bevel over a terminal's corner, every
+        edge turning by 54-59 degrees, whose vertices the mending of the triangles under 0.3
+        could not collapse away (none on a flat fan); a vertex off a flat fan may go now where
+        no triangle it moves gets farther from the input (edge_collapse.h: mend_poor_triangles):
+        0.307, 0.301, 0.307, 0.234 and 0.341. Seed 5's, on a bevel over a 0.09 mm step of the
+        top face, is still short of the bar (docs/known-gaps.md): the closest met there."""
+        shape = step_part("RLF_7030.stp")
+        from LiftRemesh import meshing, parameters
+        values = parameters.resolve({})
+        source = meshing.tessellate(shape, values["linear_deflection"], values["angular_deflection"])
+        for seed in (2, 3, 4, 5, 6):
+            with self.subTest(seed=seed):
+                result = LiftRemesh.remesh_mesh(source, vertices=3000, local_sizing=True, seed=seed)
+                points, triangles = mesh_checks.arrays(result.mesh)
+                self.assertTrue(mesh_checks.is_closed_oriented_manifold(triangles), "not a closed oriented manifold")
+                self.assertEqual(mesh_checks.euler_characteristic(points, triangles), 2)
+                self.assertEqual(result.report["output"]["folded_edges"], 0)
+                self.assertEqual(result.report["output"]["self_intersections"], 0)
+                self.assertGreaterEqual(result.report["output"]["kappa_min"], 0.23 if seed == 5 else 0.3)
+
     def test_an_open_face_keeps_its_borders_without_a_warning(self):
         """A face with a hole (a shell for FEM): its two borders come out finer, still two loops."""
         face = Part.Face(Part.Wire(Part.makeCircle(20)))

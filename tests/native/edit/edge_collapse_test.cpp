@@ -408,3 +408,39 @@ TEST(PoorTriangles, RefusesParametersOutOfRange) {
     p.flat_angle_deg = 90.0;
     EXPECT_THROW(mend_poor_triangles(m, input, p), InvalidInput);
 }
+
+TEST(PoorTriangles, AVertexOffAFlatFanGoesWhereTheSurfaceStaysAsNearTheInput) {
+    // The grid's vertex (2, 2) moved to (2, 1.15), 0.15 from (2, 1): slivers on that short edge.
+    // Its vertices on the flat input, but (2, 0) and (2, 3) 0.3 above it, as where the output cuts
+    // across a feature of the input finer than its triangles. The sliver towards (3, 2) goes as
+    // before, onto a vertex of a flat fan; the one towards (1, 1), kappa 0.27, would stay: of its
+    // vertices only (1, 1) is on a flat fan, and no collapse of it helps. Collapsing the short
+    // edge, no triangle moved is farther from the input than it was (those on (2, 3) reach it as
+    // before), and the vertex gone lies on those left: it goes.
+    const Mesh input = test::make_square(4.0, 4);
+    Mesh m = input;
+    m.points.row(12) << 2.0, 1.15, 0.0;
+    m.points(2, 2) = m.points(17, 2) = 0.3;
+    const double before = test::min_kappa(m);
+    ASSERT_LT(before, 0.3);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
+    EXPECT_EQ(stats.collapsed, 2);
+    EXPECT_GT(test::min_kappa(m), 0.3);
+    const test::Topology is = test::topology(m), was = test::topology(input);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, was.chi);
+    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+}
+
+TEST(PoorTriangles, AVertexOffAFlatFanStaysWhereItsGoingWouldCutTheInput) {
+    // The same, but the input has the sliver's vertex 0.15 above the square, a bump the output
+    // follows: merged into a neighbour, the triangles left would cut under it.
+    Mesh input = with_sliver(0.15);
+    input.points(17, 2) = 0.3;
+    Mesh m = input;
+    mend_poor_triangles(m, test::OwnedReference(input));
+    bool kept = false;
+    for (Eigen::Index v = 0; v < m.points.rows(); ++v) kept = kept || m.points.row(v).isApprox(input.points.row(12));
+    EXPECT_TRUE(kept);
+    EXPECT_TRUE(test::topology(m).oriented_manifold());
+}

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <tuple>
 
@@ -160,6 +161,38 @@ public:
         for (int32_t f : adj_.triangles_of[v])
             if (!(normal_of(mesh_, f).dot(mean) >= min_cos)) return false;
         return true;
+    }
+
+    //! Whether merging `gone` into `kept` keeps the surface as near to the input as it was: no
+    //! triangle the collapse moves farther from the input than it was (the farthest of its
+    //! centroid and edge midpoints, up to `tolerance`), and gone's own position, a point of the
+    //! input, no farther from them than the farthest of gone's fan was. A vertex off a flat fan
+    //! may then go where that fan already cut across a feature finer than the triangles (a corner
+    //! of a 0.1 mm terminal, a bevel standing for it): the collapse takes no more of it away.
+    bool stays_near_input(int32_t kept, int32_t gone, const AabbTree& input, double tolerance) const {
+        if (on_boundary_[gone]) return false;
+        auto farthest = [&](const Eigen::Vector3d (&q)[3]) {
+            double d2 = 0.0;
+            const Eigen::Vector3d samples[4] = {(q[0] + q[1] + q[2]) / 3.0, 0.5 * (q[0] + q[1]), 0.5 * (q[1] + q[2]),
+                                                0.5 * (q[2] + q[0])};
+            for (const Eigen::Vector3d& x : samples) d2 = std::max(d2, input.closest(x).squared_distance);
+            return std::sqrt(d2);
+        };
+        double fan = 0.0, gone_to_after = std::numeric_limits<double>::infinity();
+        const Eigen::Vector3d g = position(mesh_, gone);
+        for (int32_t f : adj_.triangles_of[gone]) {
+            const auto t = triangle_vertices(mesh_, f);
+            Eigen::Vector3d q[3];
+            for (int j = 0; j < 3; ++j) q[j] = position(mesh_, t[j]);
+            const double before = farthest(q);
+            fan = std::max(fan, before);
+            if (std::find(t.begin(), t.end(), kept) != t.end()) continue; // removed by the collapse
+            for (int j = 0; j < 3; ++j)
+                if (t[j] == gone) q[j] = position(mesh_, kept);
+            if (farthest(q) > before + tolerance) return false;
+            gone_to_after = std::min(gone_to_after, (closest_point_on_triangle(g, q[0], q[1], q[2]) - g).norm());
+        }
+        return gone_to_after <= fan + tolerance;
     }
 
     //! Smallest kappa of the triangles around the given vertices.
@@ -477,6 +510,18 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
             const bool a_may_go = collapser.may_go(a, min_cos), b_may_go = collapser.may_go(b, min_cos);
             mended = (a_may_go || b_may_go) &&
                      collapser.collapse(a, b, collapser.worst_kappa_around({a, b}), a_may_go, b_may_go);
+        }
+        // Off a flat fan, a vertex may go where the surface stays as near to the input, if that
+        // lifts every triangle round the edge to the floor: short of it, a split may do better.
+        for (int j = 0; j < 3 && !mended; ++j) {
+            const int32_t a = t[j], b = t[(j + 1) % 3];
+            // Rounding aside: a millionth of the edge.
+            const double tolerance = 1e-6 * (position(mesh, a) - position(mesh, b)).norm();
+            const bool a_may_go = collapser.stays_near_input(b, a, reference.tree, tolerance);
+            const bool b_may_go = collapser.stays_near_input(a, b, reference.tree, tolerance);
+            mended = (a_may_go || b_may_go) &&
+                     collapser.collapse(a, b, std::max(collapser.worst_kappa_around({a, b}), params.kappa_below),
+                                        a_may_go, b_may_go);
         }
         if (mended) continue;
         // The longest edge, split where its midpoint is nearest on the input.
