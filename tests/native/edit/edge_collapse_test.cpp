@@ -237,6 +237,14 @@ Mesh with_sliver(double z) {
     m.points.row(12) << 2.45, 1.55, z;
     return m;
 }
+
+// An oriented manifold with the Euler characteristic and boundary it `was` of.
+void expect_topology_kept(const Mesh& m, const test::Topology& was) {
+    const test::Topology is = test::topology(m);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, was.chi);
+    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+}
 } // namespace
 
 TEST(PoorTriangles, AVertexBesideAnEdgeOfItsFanIsCollapsed) {
@@ -250,10 +258,7 @@ TEST(PoorTriangles, AVertexBesideAnEdgeOfItsFanIsCollapsed) {
     EXPECT_EQ(stats.split, 0);
     EXPECT_EQ(m.points.rows(), input.points.rows() - 1);
     EXPECT_GT(test::min_kappa(m), std::max(0.25, 4 * before)); // the hexagon fanned from one corner
-    const test::Topology is = test::topology(m);
-    EXPECT_TRUE(is.oriented_manifold());
-    EXPECT_EQ(is.chi, was.chi);
-    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+    expect_topology_kept(m, was);
     EXPECT_EQ(m.points.col(2).cwiseAbs().maxCoeff(), 0.0); // still the square
 }
 
@@ -330,10 +335,7 @@ TEST(PoorTriangles, APoorTriangleOnACreaseHasItsCreaseEdgeSplit) {
     ASSERT_EQ(m.points.rows(), input.points.rows() + 1);
     EXPECT_TRUE(m.points.bottomRows(1).isApprox(Eigen::RowVector3d(2.5, 1.5, 0.0)));
     EXPECT_GT(test::min_kappa(m), 0.3);
-    const test::Topology is = test::topology(m), was = test::topology(input);
-    EXPECT_TRUE(is.oriented_manifold());
-    EXPECT_EQ(is.chi, was.chi);
-    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+    expect_topology_kept(m, test::topology(input));
 }
 
 TEST(PoorTriangles, APoorTriangleOnAChordAcrossACreaseIsLeft) {
@@ -426,10 +428,7 @@ TEST(PoorTriangles, AVertexOffAFlatFanGoesWhereTheSurfaceStaysAsNearTheInput) {
     const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
     EXPECT_EQ(stats.collapsed, 2);
     EXPECT_GT(test::min_kappa(m), 0.3);
-    const test::Topology is = test::topology(m), was = test::topology(input);
-    EXPECT_TRUE(is.oriented_manifold());
-    EXPECT_EQ(is.chi, was.chi);
-    EXPECT_EQ(is.boundary_edges, was.boundary_edges);
+    expect_topology_kept(m, test::topology(input));
 }
 
 TEST(PoorTriangles, AVertexOffAFlatFanStaysWhereItsGoingWouldCutTheInput) {
