@@ -306,16 +306,22 @@ void share_sites(std::vector<Piece>& pieces, long wanted) {
 
 // The triangles under the floor mended (edge_collapse.h), then the edges round the vertices
 // its splits added flipped where that raises them (quality_polish.h); counts added to `report`.
+// Again while a pass mends something, at most kMendPasses times: a split's triangles can be
+// under the floor themselves, and the next pass may collapse one of their edges.
 void mend_poor(Mesh& out, const Reference& reference, const QualityPolishParams& polish, RemeshReport& report) {
-    const PoorTriangleStats mended = mend_poor_triangles(out, reference);
-    report.edges_collapsed += mended.collapsed;
-    report.vertices_inserted += mended.split;
-    report.edges_flipped += mended.flipped;
-    if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
-        std::vector<int32_t> added;
-        for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
-            added.push_back(static_cast<int32_t>(v));
-        report.edges_flipped += flip_around(out, reference, polish, added);
+    constexpr int kMendPasses = 4; // each pass's splits add vertices: a bound on them
+    for (int pass = 0; pass < kMendPasses; ++pass) {
+        const PoorTriangleStats mended = mend_poor_triangles(out, reference);
+        report.edges_collapsed += mended.collapsed;
+        report.vertices_inserted += mended.split;
+        report.edges_flipped += mended.flipped;
+        if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
+            std::vector<int32_t> added;
+            for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
+                added.push_back(static_cast<int32_t>(v));
+            report.edges_flipped += flip_around(out, reference, polish, added);
+        }
+        if (mended.collapsed + mended.split == 0) break;
     }
 }
 
