@@ -238,6 +238,14 @@ Mesh with_sliver(double z) {
     return m;
 }
 
+// A strip's triangle a-b-c, a (0, 0), b (2.84, 0), c (0.77, 0.567): kappa 0.299, its apex over
+// a-b near a; the triangle a-b-(1.42, -1.3) below it and b-z-c beyond b-c, z (1.57, 1.61). Every
+// vertex on the boundary.
+Mesh strip_triangle() {
+    return test::make_mesh({{0, 0, 0}, {2.84, 0, 0}, {0.77, 0.567, 0}, {1.42, -1.3, 0}, {1.57, 1.61, 0}},
+                           {{0, 1, 2}, {1, 0, 3}, {1, 4, 2}});
+}
+
 // An oriented manifold with the Euler characteristic and boundary it `was` of.
 void expect_topology_kept(const Mesh& m, const test::Topology& was) {
     const test::Topology is = test::topology(m);
@@ -286,8 +294,7 @@ TEST(PoorTriangles, ASplitWhoseHalfIsPoorHasThatHalfsRimFlipped) {
     // the boundary: no collapse. Split at the middle m of a-b, the half m-b-c is worse (0.224), so
     // the split alone is refused; flipping b-c with the triangle b-z-c beyond it makes m-b-z and
     // m-z-c instead (0.87 and 0.74), as a mesh with a vertex more along the strip has.
-    const Mesh input = test::make_mesh({{0, 0, 0}, {2.84, 0, 0}, {0.77, 0.567, 0}, {1.42, -1.3, 0}, {1.57, 1.61, 0}},
-                                       {{0, 1, 2}, {1, 0, 3}, {1, 4, 2}});
+    const Mesh input = strip_triangle();
     Mesh m = input;
     ASSERT_NEAR(test::min_kappa(m), 0.299, 0.001);
     const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(input));
@@ -308,8 +315,7 @@ TEST(PoorTriangles, ASplitWhoseHalfIsPoorHasThatHalfsRimFlipped) {
 TEST(PoorTriangles, ASplitsFlipLeavesACreaseOnItsRim) {
     // The same, but b-z-c turned 30 degrees about b-c: b-c is a crease, which no flip may take
     // away, and the split alone would make a worse triangle. Nothing is done.
-    Mesh input = test::make_mesh({{0, 0, 0}, {2.84, 0, 0}, {0.77, 0.567, 0}, {1.42, -1.3, 0}, {1.57, 1.61, 0}},
-                                 {{0, 1, 2}, {1, 0, 3}, {1, 4, 2}});
+    Mesh input = strip_triangle();
     const Eigen::Vector3d b = input.points.row(1).transpose(), c = input.points.row(2).transpose();
     const Eigen::AngleAxisd turn(30.0 * M_PI / 180.0, (c - b).normalized());
     input.points.row(4) = (b + turn * (input.points.row(4).transpose() - b)).transpose();

@@ -165,12 +165,14 @@ public:
 
     //! Whether merging `gone` into `kept` keeps the surface as near to the input as it was: no
     //! triangle the collapse moves farther from the input than it was (the farthest of its
-    //! centroid and edge midpoints, up to `tolerance`), and gone's own position, a point of the
+    //! centroid and edge midpoints, up to rounding), and gone's own position, a point of the
     //! input, no farther from them than the farthest of gone's fan was. A vertex off a flat fan
     //! may then go where that fan already cut across a feature finer than the triangles (a corner
     //! of a 0.1 mm terminal, a bevel standing for it): the collapse takes no more of it away.
-    bool stays_near_input(int32_t kept, int32_t gone, const AabbTree& input, double tolerance) const {
+    bool stays_near_input(int32_t kept, int32_t gone, const AabbTree& input) const {
         if (on_boundary_[gone]) return false;
+        // Rounding aside: a millionth of the edge.
+        const double tolerance = 1e-6 * (position(mesh_, kept) - position(mesh_, gone)).norm();
         auto farthest = [&](const Eigen::Vector3d (&q)[3]) {
             double d2 = 0.0;
             const Eigen::Vector3d samples[4] = {(q[0] + q[1] + q[2]) / 3.0, 0.5 * (q[0] + q[1]), 0.5 * (q[1] + q[2]),
@@ -504,25 +506,24 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
         if (!collapser.alive(f)) continue; // taken out by an earlier collapse
         const auto t = triangle_vertices(mesh, f);
         if (kappa_of(mesh, t) != kappa) continue; // changed by an earlier split
-        bool mended = false;
-        for (int j = 0; j < 3 && !mended; ++j) {
-            const int32_t a = t[j], b = t[(j + 1) % 3];
-            const bool a_may_go = collapser.may_go(a, min_cos), b_may_go = collapser.may_go(b, min_cos);
-            mended = (a_may_go || b_may_go) &&
-                     collapser.collapse(a, b, collapser.worst_kappa_around({a, b}), a_may_go, b_may_go);
-        }
+        // A collapse of one of its edges, the end point that goes one `may_go(kept, gone)` allows,
+        // the triangles round the edge ending above `floor` and above their worst now.
+        auto collapse_an_edge = [&](auto may_go, double floor) {
+            for (int j = 0; j < 3; ++j) {
+                const int32_t a = t[j], b = t[(j + 1) % 3];
+                const bool a_may_go = may_go(b, a), b_may_go = may_go(a, b);
+                if ((a_may_go || b_may_go) &&
+                    collapser.collapse(a, b, std::max(collapser.worst_kappa_around({a, b}), floor), a_may_go, b_may_go))
+                    return true;
+            }
+            return false;
+        };
         // Off a flat fan, a vertex may go where the surface stays as near to the input, if that
         // lifts every triangle round the edge to the floor: short of it, a split may do better.
-        for (int j = 0; j < 3 && !mended; ++j) {
-            const int32_t a = t[j], b = t[(j + 1) % 3];
-            // Rounding aside: a millionth of the edge.
-            const double tolerance = 1e-6 * (position(mesh, a) - position(mesh, b)).norm();
-            const bool a_may_go = collapser.stays_near_input(b, a, reference.tree, tolerance);
-            const bool b_may_go = collapser.stays_near_input(a, b, reference.tree, tolerance);
-            mended = (a_may_go || b_may_go) &&
-                     collapser.collapse(a, b, std::max(collapser.worst_kappa_around({a, b}), params.kappa_below),
-                                        a_may_go, b_may_go);
-        }
+        const bool mended =
+            collapse_an_edge([&](int32_t, int32_t gone) { return collapser.may_go(gone, min_cos); }, 0.0) ||
+            collapse_an_edge([&](int32_t kept, int32_t gone) { return collapser.stays_near_input(kept, gone, reference.tree); },
+                             params.kappa_below);
         if (mended) continue;
         // The longest edge, split where its midpoint is nearest on the input.
         int longest = 0;
