@@ -315,12 +315,8 @@ void mend_poor(Mesh& out, const Reference& reference, const QualityPolishParams&
         report.edges_collapsed += mended.collapsed;
         report.vertices_inserted += mended.split;
         report.edges_flipped += mended.flipped;
-        if (mended.split > 0) { // its new vertices, appended last, and the triangles round them
-            std::vector<int32_t> added;
-            for (Eigen::Index v = out.points.rows() - mended.split; v < out.points.rows(); ++v)
-                added.push_back(static_cast<int32_t>(v));
-            report.edges_flipped += flip_around(out, reference, polish, added);
-        }
+        if (!mended.added.empty()) // the triangles round its new vertices
+            report.edges_flipped += flip_around(out, reference, polish, mended.added);
         if (mended.collapsed + mended.split == 0) break;
     }
 }

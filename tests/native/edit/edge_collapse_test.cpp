@@ -438,3 +438,25 @@ TEST(PoorTriangles, AVertexOffAFlatFanGoesWhereTheSurfaceStaysAsNearTheInput) {
     EXPECT_GT(test::min_kappa(m), 0.3);
     expect_topology_kept(m, test::topology(input));
 }
+
+TEST(PoorTriangles, TheSplitsVerticesAreGivenAsTheCollapsesRenumberThem) {
+    // Two pieces mended in one pass: the boundary triangle of APoorTriangleOfBoundaryVertices...
+    // (split at (0.5, 0, 0)), then, 10 away, the sliver that AVertexBesideAnEdge... collapses. The
+    // collapse renumbers the vertices in order of first use, which puts the split's vertex,
+    // first used by the first piece's triangles, among the first rather than last.
+    const Mesh split_piece =
+        test::make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 0.12, 0}, {0.5, -0.6, 0}}, {{0, 1, 2}, {1, 0, 3}});
+    Mesh square = with_sliver(0.0);
+    square.points.col(0).array() += 10.0;
+    Mesh flat = test::make_square(4.0, 4);
+    flat.points.col(0).array() += 10.0;
+    Mesh m = test::joined(split_piece, square);
+    const PoorTriangleStats stats = mend_poor_triangles(m, test::OwnedReference(test::joined(split_piece, flat)));
+    EXPECT_EQ(stats.collapsed, 1);
+    ASSERT_EQ(stats.split, 1);
+    ASSERT_EQ(stats.added.size(), 1u);
+    ASSERT_GE(stats.added[0], 0);
+    ASSERT_LT(stats.added[0], m.points.rows());
+    EXPECT_TRUE(m.points.row(stats.added[0]).isApprox(Eigen::RowVector3d(0.5, 0, 0)));
+    EXPECT_FALSE(m.points.row(m.points.rows() - 1).isApprox(Eigen::RowVector3d(0.5, 0, 0))); // not last
+}

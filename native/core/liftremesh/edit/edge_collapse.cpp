@@ -403,9 +403,12 @@ public:
         for (Eigen::Index f = 0; f < nf; ++f)
             if (adj_.alive[f]) kept_triangles.row(row++) = mesh_.triangles.row(f);
         mesh_.triangles = std::move(kept_triangles);
-        remove_unreferenced_vertices(mesh_);
+        renumbered_ = remove_unreferenced_vertices(mesh_);
         return collapsed_;
     }
+
+    //! Vertex v's index after finish(), which renumbers the vertices if anything was collapsed.
+    int32_t renumbered(int32_t v) const { return renumbered_.empty() ? v : renumbered_[v]; }
 
 private:
     //! Whether a new triangle of unit normal n, on an edge of triangle g (none if g < 0), folds
@@ -463,6 +466,7 @@ private:
     std::vector<char> on_boundary_;
     long collapsed_ = 0;
     long split_ = 0;
+    std::vector<int32_t> renumbered_; // by finish(), old index to new
     long flipped_ = 0;
 };
 
@@ -547,7 +551,10 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
     PoorTriangleStats stats;
     stats.split = collapser.splits();
     stats.flipped = collapser.flips();
+    const Eigen::Index before = mesh.points.rows(); // the splits' vertices are the last split
     stats.collapsed = collapser.finish();
+    for (Eigen::Index v = before - stats.split; v < before; ++v)
+        stats.added.push_back(collapser.renumbered(static_cast<int32_t>(v)));
     return stats;
 }
 

@@ -49,6 +49,9 @@ struct PoorTriangleStats {
     long collapsed = 0; //!< edges collapsed, each a vertex fewer
     long split = 0;     //!< edges split, each a vertex more
     long flipped = 0;   //!< edges flipped with a split (below)
+    //! The vertices the splits added, as numbered on return (the collapses renumber the
+    //! vertices: remove_unreferenced_vertices).
+    std::vector<int32_t> added;
 };
 
 //! Mends each triangle under params.kappa_below, worst first, as a remesher's last sliver
@@ -78,7 +81,8 @@ struct PoorTriangleStats {
 //!   edge above them, and the flip is made with the split: a triangle across a strip narrower
 //!   than its long edge, its apex near one end, leaves such a half when split alone.
 //! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
-//! vertices are removed; added ones are appended.
+//! vertices are removed, which renumbers the vertices; PoorTriangleStats::added gives the new
+//! ones.
 //! \throw InvalidInput if a parameter is out of range or an index is.
 PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& input, const PoorTriangleParams& params = {});
 

@@ -249,10 +249,10 @@ void check_extent(const Mesh& mesh, const char* what) {
 namespace {
 
 // Triangles row(0) .. row(count - 1) of `mesh`, with the vertices they use renumbered in order
-// of first use.
+// of first use; remap[v] is old vertex v's new index, -1 if unused.
 template <class Row>
-Mesh compacted(const Mesh& mesh, Eigen::Index count, const Row& row) {
-    std::vector<int32_t> remap(static_cast<size_t>(mesh.points.rows()), -1);
+Mesh compacted(const Mesh& mesh, Eigen::Index count, const Row& row, std::vector<int32_t>& remap) {
+    remap.assign(static_cast<size_t>(mesh.points.rows()), -1);
     std::vector<int32_t> used;
     Mesh part;
     part.triangles.resize(count, 3);
@@ -272,8 +272,10 @@ Mesh compacted(const Mesh& mesh, Eigen::Index count, const Row& row) {
 
 } // namespace
 
-void remove_unreferenced_vertices(Mesh& mesh) {
-    mesh = compacted(mesh, mesh.triangles.rows(), [](Eigen::Index f) { return f; });
+std::vector<int32_t> remove_unreferenced_vertices(Mesh& mesh) {
+    std::vector<int32_t> remap;
+    mesh = compacted(mesh, mesh.triangles.rows(), [](Eigen::Index f) { return f; }, remap);
+    return remap;
 }
 
 void drop_triangles(Mesh& mesh, const std::vector<char>& drop) {
@@ -284,7 +286,8 @@ void drop_triangles(Mesh& mesh, const std::vector<char>& drop) {
 }
 
 Mesh submesh(const Mesh& mesh, const std::vector<int32_t>& ids) {
-    return compacted(mesh, static_cast<Eigen::Index>(ids.size()), [&ids](Eigen::Index k) { return ids[k]; });
+    std::vector<int32_t> remap;
+    return compacted(mesh, static_cast<Eigen::Index>(ids.size()), [&ids](Eigen::Index k) { return ids[k]; }, remap);
 }
 
 void append(Mesh& mesh, const Mesh& part) {

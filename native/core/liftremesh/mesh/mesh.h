@@ -156,8 +156,8 @@ constexpr double kMaxExtentRatio = 1e9;
 void check_extent(const Mesh& mesh, const char* what);
 
 //! Drops vertices no triangle references and renumbers the triangles (vertices in order of
-//! first use).
-void remove_unreferenced_vertices(Mesh& mesh);
+//! first use). Returns each old vertex's new index, -1 for the dropped.
+std::vector<int32_t> remove_unreferenced_vertices(Mesh& mesh);
 
 //! Drops the triangles f with drop[f] set (#F entries), keeping the others in their order; the
 //! vertices stay (remove_unreferenced_vertices).
