@@ -121,6 +121,22 @@ TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
     EXPECT_GE(test::min_kappa(m), 0.3);
 }
 
+// A pair folded shut on a plane, as a corner pin hole's rim left one on a frame's top face: the
+// apex c of (b, a, c) lies inside (a, b, d), facing down onto it, on the input but for its side.
+// Within any tolerance, and the flip leaves (c, d, a) nearly flat (c near the line a-d): taken
+// all the same, since a mesher refuses the pair; the mending's split lifts such a triangle.
+TEST(QualityPolish, APairFoldedShutOnTheInputIsFlippedWhateverTheNewShape) {
+    Mesh m = test::make_mesh({{0, 0, 0}, {2, 0, 0}, {0.5, 0.55, 0}, {1.2, 1.4, 0}}, {{0, 1, 3}, {1, 0, 2}});
+    const test::OwnedReference input(test::make_square(4.0, 4));
+    ASSERT_GT(test::largest_dihedral_deg(m), 179.0);
+    const QualityPolishStats stats = polish_quality(m, input, with_tolerance(0.5));
+    EXPECT_EQ(stats.unfolded, 1);
+    EXPECT_TRUE(has_edge(m, 2, 3));
+    EXPECT_FALSE(has_edge(m, 0, 1));
+    EXPECT_LT(test::largest_dihedral_deg(m), 1e-6); // both up, on the plane
+    EXPECT_LT(test::min_kappa(m), 0.1);
+}
+
 // A blade of the input: two faces turning by 135 degrees about a-b. Followed by the mesh, it is
 // no fold, and flipping it would cut the blade.
 TEST(QualityPolish, ASharpCreaseOfTheInputIsNoFold) {

@@ -143,11 +143,17 @@ bool fold_flip_fits_input(const EditableMesh& mesh, const EditableMesh::Quad& qu
     const EditableMesh::Tri& t1 = mesh.tris[quad.t1];
     const EditableMesh::Tri& t2 = mesh.tris[quad.t2];
     if (!(mesh.normal(t1).dot(mesh.normal(t2)) < 0.0)) return false; // turns by 90 degrees at most
-    if (!(std::max(triangle_distance_from_input(mesh, t1, input), triangle_distance_from_input(mesh, t2, input)) > tolerance))
+    // Folded shut, one of them off the input's faces: the two lie on each other, however near
+    // the input, and a mesher refuses the pair whatever the shape of the new triangles.
+    const bool shut = folded(mesh.normal(t1), mesh.normal(t2)) &&
+                      !(lies_on_input(mesh, t1, input, tolerance) && lies_on_input(mesh, t2, input, tolerance));
+    if (!shut &&
+        !(std::max(triangle_distance_from_input(mesh, t1, input), triangle_distance_from_input(mesh, t2, input)) > tolerance))
         return false; // near the input: a crease of it, followed, or a fold too small to matter
     const auto [n1, n2] = EditableMesh::flipped(quad);
     const double worse_before = std::min(mesh.kappa(t1), mesh.kappa(t2));
-    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= std::min(worse_before, kKappaFloor))) return false;
+    const double floor = shut ? 0.0 : std::min(worse_before, kKappaFloor);
+    if (!(std::min(mesh.kappa(n1), mesh.kappa(n2)) >= floor)) return false;
     return lies_on_input(mesh, n1, input, tolerance) && lies_on_input(mesh, n2, input, tolerance);
 }
 

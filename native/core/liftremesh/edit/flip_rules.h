@@ -39,7 +39,9 @@ bool quality_flip_keeps_surface(const EditableMesh& mesh, const EditableMesh::Qu
 
 //! Whether flipping the quad's edge undoes a fold (quality_polish.h: the flips): its two triangles turn
 //! by more than 90 degrees and one of them is farther than `tolerance` from the input, both new
-//! ones lie on the input, their worse kappa at least the old pair's or kKappaFloor. A triangle's
+//! ones lie on the input, their worse kappa at least the old pair's or kKappaFloor. A pair folded
+//! shut (kCosFolded) one of whose triangles does not lie on the input is flipped however near
+//! it lies and whatever the new kappa: the two lie on each other. A triangle's
 //! distance is the largest of seven of its points (centroid, edge midpoints, halfway from the
 //! centroid to each corner); it lies on the input when that is within `tolerance` and its
 //! normal within 30 degrees of the input's triangle nearest to its centroid.

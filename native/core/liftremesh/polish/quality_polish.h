@@ -7,7 +7,9 @@
 //   input than the tolerance (a triangle across the end of a wall thinner than the edge length,
 //   folded onto its neighbour) is flipped when both new triangles lie on it
 //   (fold_flip_fits_input, flip_rules.h); a crease of the input, followed, is near it and left
-//   alone;
+//   alone. A pair folded shut (by more than 170 degrees), one of its triangles off the input's
+//   faces, is flipped however near the input and whatever the new triangles' shape: the mending
+//   of the triangles under kappa 0.3 comes after (edge_collapse.h);
 // - caps, first: a triangle with an angle of 150 degrees or more, its apex near the opposite edge
 //   (three vertices along a crease joined across it), has that edge flipped when both new
 //   triangles lie on the input (as for folds), are better than the worse old one, and neither
