@@ -124,7 +124,7 @@ TEST(QualityPolish, AFoldIsFlippedOntoTheInput) {
 // A pair folded shut on a plane, as a corner pin hole's rim left one on a frame's top face: the
 // apex c of (b, a, c) lies inside (a, b, d), facing down onto it, on the input but for its side.
 // Within any tolerance, and the flip leaves (c, d, a) nearly flat (c near the line a-d): taken
-// all the same, since a mesher refuses the pair; the mending's split lifts such a triangle.
+// all the same, since a mesher refuses the pair; the mending of triangles under 0.3 comes after.
 TEST(QualityPolish, APairFoldedShutOnTheInputIsFlippedWhateverTheNewShape) {
     Mesh m = test::make_mesh({{0, 0, 0}, {2, 0, 0}, {0.5, 0.55, 0}, {1.2, 1.4, 0}}, {{0, 1, 3}, {1, 0, 2}});
     const test::OwnedReference input(test::make_square(4.0, 4));

@@ -551,10 +551,11 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
     PoorTriangleStats stats;
     stats.split = collapser.splits();
     stats.flipped = collapser.flips();
-    const Eigen::Index before = mesh.points.rows(); // the splits' vertices are the last split
+    const Eigen::Index before = mesh.points.rows(); // the splits' vertices: its last `split` rows
     stats.collapsed = collapser.finish();
     for (Eigen::Index v = before - stats.split; v < before; ++v)
-        stats.added.push_back(collapser.renumbered(static_cast<int32_t>(v)));
+        if (const int32_t now = collapser.renumbered(static_cast<int32_t>(v)); now >= 0) // never gone: guarded
+            stats.added.push_back(now);
     return stats;
 }
 
