@@ -460,3 +460,30 @@ TEST(PoorTriangles, TheSplitsVerticesAreGivenAsTheCollapsesRenumberThem) {
     EXPECT_TRUE(m.points.row(stats.added[0]).isApprox(Eigen::RowVector3d(0.5, 0, 0)));
     EXPECT_FALSE(m.points.row(m.points.rows() - 1).isApprox(Eigen::RowVector3d(0.5, 0, 0))); // not last
 }
+
+TEST(PoorTriangles, ALongerEdgeAcrossIsSplitFirst) {
+    // The frame's top face between a corner and its pin hole, 30,000 vertices, seed 3: a poor
+    // triangle (0.23) from the corner a to the rim vertices c, e, whose long edge a-e runs to
+    // the middle of the top face's crease edge a-f (2.53 long) beside it, over the wall
+    // (a, f, w) at x = 0. Split at its middle, a-e leaves (a, m, f) at 0.12, and its rim a-f is
+    // a crease no flip may take. The triangle across, (e, f, a), has the longer edge a-f: split
+    // first, on the crease, its rim flip takes a-e and joins c to the crease's new vertex.
+    const Mesh top = test::make_mesh({{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {0, 3, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    const Mesh wall = test::make_mesh({{0, 0, 0}, {0, 3, 0}, {0, 3, -3}, {0, 0, -3}}, {{0, 1, 2}, {0, 2, 3}});
+    const test::OwnedReference input(test::joined(top, wall));
+    // a, c, e, f, w
+    Mesh m = test::make_mesh({{0, 0, 0}, {0.722, 1.048, 0}, {0.619, 1.895, 0}, {0, 2.531, 0}, {0, 1.86, -1.72}},
+                             {{1, 2, 0}, {2, 3, 0}, {0, 3, 4}});
+    const double before = test::min_kappa(m);
+    ASSERT_NEAR(before, 0.23, 0.01);
+    const PoorTriangleStats stats = mend_poor_triangles(m, input);
+    EXPECT_EQ(stats.collapsed, 0);
+    EXPECT_EQ(stats.split, 1);
+    EXPECT_EQ(stats.flipped, 1);
+    ASSERT_EQ(m.points.rows(), 6);
+    EXPECT_TRUE(m.points.row(5).isApprox(Eigen::RowVector3d(0, 1.2655, 0)));
+    EXPECT_GT(test::min_kappa(m), 0.5);
+    const test::Topology is = test::topology(m);
+    EXPECT_TRUE(is.oriented_manifold());
+    EXPECT_EQ(is.chi, 1);
+}

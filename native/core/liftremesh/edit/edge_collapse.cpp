@@ -506,6 +506,30 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
     std::sort(poor.begin(), poor.end());
     const double min_cos = std::cos(params.flat_angle_deg * M_PI / 180.0);
     Collapser collapser(mesh);
+    // The longest edge of a triangle, a -> b as it runs, and its length.
+    auto longest_edge = [&](const std::array<int32_t, 3>& tri) {
+        int longest = 0;
+        double length = -1.0;
+        for (int j = 0; j < 3; ++j)
+            if (const double l = (position(mesh, tri[j]) - position(mesh, tri[(j + 1) % 3])).norm(); l > length) {
+                length = l;
+                longest = j;
+            }
+        return std::make_tuple(tri[longest], tri[(longest + 1) % 3], length);
+    };
+    // Edge a-b split where its midpoint is nearest on the input; whether it was.
+    auto split_at_middle = [&](int32_t a, int32_t b) {
+        const Eigen::Vector3d pa = position(mesh, a), pb = position(mesh, b);
+        const ClosestPoint p = reference.tree.closest(0.5 * (pa + pb));
+        if (p.triangle < 0) return false;
+        // The edge runs along the input (a crease's, if its triangles turn) when that point
+        // lies on it: a chord across a crease turning by theta has its middle (L / 2)
+        // sin(theta / 2) off the input, 0.19 L at 45 degrees; a chord of a curved crease of
+        // radius R, L / (8 R).
+        const double off_edge = (closest_point_on_segment(p.point, pa, pb) - p.point).norm();
+        const bool along_input = off_edge <= kAlongInput * (pb - pa).norm();
+        return collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b), along_input, true);
+    };
     for (const auto& [kappa, f] : poor) {
         if (!collapser.alive(f)) continue; // taken out by an earlier collapse
         const auto t = triangle_vertices(mesh, f);
@@ -529,24 +553,16 @@ PoorTriangleStats mend_poor_triangles(Mesh& mesh, const Reference& reference, co
             collapse_an_edge([&](int32_t kept, int32_t gone) { return collapser.stays_near_input(kept, gone, reference.tree); },
                              params.kappa_below);
         if (mended) continue;
-        // The longest edge, split where its midpoint is nearest on the input.
-        int longest = 0;
-        double length = -1.0;
-        for (int j = 0; j < 3; ++j)
-            if (const double l = (position(mesh, t[j]) - position(mesh, t[(j + 1) % 3])).norm(); l > length) {
-                length = l;
-                longest = j;
-            }
-        const int32_t a = t[longest], b = t[(longest + 1) % 3];
-        const Eigen::Vector3d pa = position(mesh, a), pb = position(mesh, b);
-        const ClosestPoint p = reference.tree.closest(0.5 * (pa + pb));
-        if (p.triangle < 0) continue;
-        // The edge runs along the input (a crease's, if its triangles turn) when that point lies
-        // on it: a chord across a crease turning by theta has its middle (L / 2) sin(theta / 2)
-        // off the input, 0.19 L at 45 degrees; a chord of a curved crease of radius R, L / (8 R).
-        const double off_edge = (closest_point_on_segment(p.point, pa, pb) - p.point).norm();
-        const bool along_input = off_edge <= kAlongInput * (pb - pa).norm();
-        collapser.split(a, b, p.point, collapser.worst_kappa_of_edge(a, b), along_input, true);
+        const auto [a, b, length] = longest_edge(t);
+        if (split_at_middle(a, b)) continue;
+        // Refused: the next step of Rivara's longest-edge propagation. The triangle across that
+        // edge has a longer one (a crease's edge beside a strip narrower than it: the frame's
+        // 0.6 mm of top face between a corner and its pin hole), split first; its split's rim
+        // flip may then take the poor triangle's edge, joining its apex to the new vertex.
+        if (const auto q = collapser.quad(a, b)) {
+            const auto [u, v, across] = longest_edge(triangle_vertices(mesh, (*q)[1]));
+            if (across > length) split_at_middle(u, v);
+        }
     }
     PoorTriangleStats stats;
     stats.split = collapser.splits();

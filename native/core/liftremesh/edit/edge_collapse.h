@@ -80,6 +80,9 @@ struct PoorTriangleStats {
 //!   (whose two triangles turn by less than 15 degrees: no crease) lifts both triangles of that
 //!   edge above them, and the flip is made with the split: a triangle across a strip narrower
 //!   than its long edge, its apex near one end, leaves such a half when split alone.
+//! - Else, if the triangle across that longest edge has a longer edge, that one split the same
+//!   way (the next step of Rivara's longest-edge propagation): a crease's edge beside a strip
+//!   narrower than it, whose split's rim flip then takes the poor triangle's edge.
 //! The surface keeps its orientation, manifoldness and Euler characteristic. Unreferenced
 //! vertices are removed, which renumbers the vertices; PoorTriangleStats::added gives the new
 //! ones.
