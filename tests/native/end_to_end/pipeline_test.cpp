@@ -61,17 +61,25 @@ double worst_cube_corner(const Mesh& out) {
 }
 } // namespace
 
-// The feature term alone (the paper's method: no site held on the creases).
+// The feature term alone (the paper's method: no site held on the creases, no crease snapped
+// to). With the creases snapped to (the feature angle's, the default), the corners that sigma 1
+// cuts are on vertices too: the snap moves one onto each (crease_snap.h).
 TEST(Remesh, CubeCornersAreKeptWithSigmaFiveAndNotWithSigmaOne) {
     const Mesh input = test::make_cube(0.5, 6);
     RemeshParams params = params_with(1200, 5.0);
     params.hold_creases = false;
+    params.feature_angle = 180.0;
     const RemeshResult sharp = remesh(input, params);
     params.sigma = 1.0;
     const RemeshResult smooth = remesh(input, params);
     EXPECT_TRUE(test::topology(sharp.mesh).closed_oriented_manifold());
     EXPECT_LE(worst_cube_corner(sharp.mesh), 0.01);
     EXPECT_GT(worst_cube_corner(smooth.mesh), 0.01); // without the feature term corners are cut
+    params.feature_angle = RemeshParams{}.feature_angle;
+    const RemeshResult snapped = remesh(input, params);
+    EXPECT_TRUE(test::topology(snapped.mesh).closed_oriented_manifold());
+    EXPECT_LE(worst_cube_corner(snapped.mesh), 1e-9);
+    EXPECT_GE(snapped.report.output.kappa_min, 0.45);
 }
 
 // With sites held on the creases and corners (hold_creases, crease_sites.h; the default) the

@@ -165,13 +165,20 @@ private:
                 if (w == d) return true;
         return false;
     }
+    // A quality flip (EditableMesh::flip_improves_quality) of a pair the move left under the
+    // floor, its new diagonal within the tolerance of the input (see the header).
+    bool lifts_under_floor(const EditableMesh::Quad& q, double d_after, double floor) const {
+        return std::min(mesh_.kappa(mesh_.tris[q.t1]), mesh_.kappa(mesh_.tris[q.t2])) < floor &&
+               d_after <= params_.tolerance && mesh_.flip_improves_quality(q);
+    }
     long try_flip(int t, int j, const Measure& before, double floor) {
         const auto q = quad(t, j);
         if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
                               std::min(floor, before.worst_kappa)) &&
-            !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance))
+            !quality_flip_keeps_surface(mesh_, *q, d_before, d_after, params_.tolerance) &&
+            !lifts_under_floor(*q, d_after, floor))
             return 0;
         const auto [n1, n2] = EditableMesh::flipped(*q);
         if (is_off(n1) || is_off(n2)) return 0;

@@ -19,8 +19,11 @@
 // the acute ones, on the output's vertices and edges. The edges of
 // its fan that then cross the wedge are flipped (the other diagonal of their quad lies at most
 // half as far from the input: crease_flip_fits, flip_rules.h), and so are those whose quality
-// flip keeps the surface (quality_flip_keeps_surface). The move and its flips stand only
-// together, and only if
+// flip keeps the surface (quality_flip_keeps_surface) and, where the move left a pair under the
+// floor, those whose quality flip keeps the new diagonal within `tolerance` of the input, as
+// far as the move itself may take the surface (on the wall of a bore an edge or two across, the
+// diagonal that mends a triangle up the wall spans more of the bore: a deeper chord). The move
+// and its flips stand only together, and only if
 // - no more of the triangles they change turn from the input's normal nearest to their
 //   centroid by more than 60 degrees than before (a triangle across the wedge, or turned over);
 // - the worst kappa (Eq. 26) of those triangles is at least kappa_floor (knife_kappa_floor for
