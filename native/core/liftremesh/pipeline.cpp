@@ -448,6 +448,13 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     report.vertices_moved += onto_crease.moved + polished.moved;
     report.edges_collapsed += collapse_folded_pairs(out, reference, steps.folded_pairs).collapsed;
     mend_poor(out, reference, steps.quality_polish, report);
+    // The snap again, over the fans the steps since have changed: a vertex beside the rim of a
+    // hole an edge or two across could not move onto it while its fan reached across the bore
+    // (the triangle to the next rim vertex would span it), and can once a split has put a
+    // vertex on the rim beside it. The moves keep the snap's floor, so none undoes a mending.
+    const CreaseSnapStats again = snap_to_acute_creases(out, reference, creases_over_angle, onto_creases);
+    report.edges_flipped += again.flipped;
+    report.vertices_moved += again.moved;
     // Last, as every step before keeps the surface on the input: the vertices on the chords of a
     // curved crease onto the curve (crease_curves.h), with the explicit creases only.
     if (params.feature_angle < 180.0) {
