@@ -342,9 +342,9 @@ Mesh face_and_bore(double r, double outer, double height, int n, int rings, int 
 // The fan of a vertex of a part's face 0.35 mm beside the rim of a 1.8 mm bore, in the output
 // of the frame at 30,000 vertices (tests/freecad/test_components.py, seed 3), whose triangle
 // up the wall was left at kappa 0.22. Moved onto the rim, the vertex leaves that triangle at
-// 0.26, which the flip of its long edge mends (0.75 and 0.73); that flip's diagonal spans more
-// of the bore than the old one, a chord 0.13 mm deep against 0.08, farther than half the
-// tolerance (0.1 mm at edges of 2 mm) but within it, as the move itself may be.
+// 0.26, which the flip of its long edge mends (0.74 and 0.73 there); that flip's diagonal
+// spans more of the bore than the old one, a chord 0.13 mm deep against 0.08, farther than
+// half the tolerance (0.1 mm at edges of 2 mm) but within it, as the move itself may be.
 TEST(CreaseSnap, TakesTheFlipThatMendsAMoveOntoTheRimOfABoreWithinTheTolerance) {
     const Mesh input = face_and_bore(0.9, 5.0, 5.0, 256, 20, 40);
     const std::vector<Eigen::Vector3d> pts = {
