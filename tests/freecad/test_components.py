@@ -170,9 +170,9 @@ class FrameAtThirtyThousandVertices(unittest.TestCase):
     with no triangle under kappa 0.3. Seed 3 had 0.223 on the wall of a 1.8 mm pin hole, whose
     bottom rim the output had cut: a vertex of the part's face 0.35 mm beside it, joined up the
     wall. The crease snap could not move it onto the rim while the triangle to the next rim vertex
-    spanned half the bore; it can once the mending has split a vertex onto the rim beside it, with
-    the flip that mends the triangle up the wall, whose new diagonal is a deeper chord of the bore
-    (pipeline.cpp, crease_snap.h)."""
+    would have spanned the bore (a chord 0.45 mm inside it); it can once the mending has split a
+    vertex onto the rim beside it, with the flip that mends the triangle up the wall, whose new
+    diagonal is a deeper chord of the bore (pipeline.cpp, crease_snap.h)."""
 
     @classmethod
     def setUpClass(cls):
