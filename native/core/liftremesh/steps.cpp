@@ -58,6 +58,9 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     // a bend that no such edge passes within 0.07 h of gets a vertex of its own.
     s.feature_snap.bend_turn_deg = 10.0;
     s.feature_snap.bend_distance = 0.07 * spacing * scale;
+    // Where two creases converge, the one the output's row of vertices misses runs up to 0.33 h
+    // from it (the thread's run-outs): points of it a quarter of an edge apart, a vertex each.
+    s.feature_snap.gap_separation = 0.25 * spacing * scale;
 
     // The output's crease vertices are the snap's, on the chords, or within its 0.02 h depth of
     // them: those within 0.05 h move towards the curves by at most 0.05 h, so the output stays

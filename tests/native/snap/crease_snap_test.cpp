@@ -201,6 +201,63 @@ TEST(CreaseSnap, ListsTheBendsTheMeshsCreasesCutAcross) {
     EXPECT_THROW(bends_off_mesh_creases(octagonal, creases, p), InvalidInput);
 }
 
+// A slab's two long vertical creases at either end run 0.1 apart: a strip. The output's
+// rhombus stands for each pair by one crease at its tip, between them, 0.05 from each.
+TEST(CreaseSnap, ListsTheCreasePointsOfAStripThatTheMeshsCreasesPassFarFrom) {
+    const Mesh input = test::make_prism({{0.0, 0.0}, {2.0, 0.0}, {2.0, 0.1}, {0.0, 0.1}}, 3.0);
+    const Mesh rhombus = test::make_prism({{0.0, 0.05}, {1.0, 0.0}, {2.0, 0.05}, {1.0, 0.1}}, 3.0);
+    const AcuteCreases creases(input, 30.0, 0.1);
+    CreaseSnapParams p = params_for(0.5);
+    p.bend_distance = 0.03;
+    p.gap_separation = 0.25;
+    const std::vector<Eigen::Vector3d> gaps = crease_gaps(rhombus, creases, p);
+    // One of each pair of vertical creases along its 3 high, a point every 0.27 or so (the
+    // samples' step is 0.03), the other crease of the pair within the separation of those; and
+    // points of the long rims, a strip too, which the rhombus's rims cross diagonally.
+    long vertical = 0;
+    for (size_t i = 0; i < gaps.size(); ++i) {
+        const Eigen::Vector3d& g = gaps[i];
+        EXPECT_TRUE(g.y() == 0.0 || g.y() == 0.1) << g.transpose();
+        if (g.x() == 0.0 || g.x() == 2.0) {
+            ++vertical;
+            EXPECT_GE(g.z(), 0.03); // the output's rims pass within 0.03 of the crease's ends
+            EXPECT_LE(g.z(), 2.97);
+        } else {
+            EXPECT_TRUE(g.z() == 0.0 || g.z() == 3.0) << g.transpose();
+        }
+        for (size_t j = 0; j < i; ++j) EXPECT_GE((gaps[j] - g).norm(), 0.25);
+    }
+    EXPECT_GE(vertical, 20);
+    EXPECT_LE(vertical, 24);
+    EXPECT_TRUE(crease_gaps(input, creases, p).empty()); // on the mesh's own creases
+    p.bend_distance = 0.06;                                // the tips pass within 0.05
+    EXPECT_TRUE(crease_gaps(rhombus, creases, p).empty());
+    p.bend_distance = 0.03;
+    p.gap_separation = 0.04; // another crease within 0.08 of a point, across: none
+    EXPECT_TRUE(crease_gaps(rhombus, creases, p).empty());
+    p.gap_separation = 0.0;
+    EXPECT_TRUE(crease_gaps(rhombus, creases, p).empty());
+    p.gap_separation = -1.0;
+    EXPECT_THROW(crease_gaps(rhombus, creases, p), InvalidInput);
+    p.gap_separation = 0.25;
+    p.bend_distance = std::nan("");
+    EXPECT_THROW(crease_gaps(rhombus, creases, p), InvalidInput);
+}
+
+// The sixteen-gon's rims pass 0.076 outside the octagon's at their odd corners: bends the
+// octagon's chords cut across (above), no strip between two creases. Its chords are 0.39 long:
+// the corner after next lies that far from an odd corner, within twice a separation of 0.25.
+TEST(CreaseSnap, ListsNoCreaseGapsWhereTheMeshsCreaseIsAChordOfTheSameCrease) {
+    const AcuteCreases creases(regular_prism(16), 30.0, 0.1);
+    CreaseSnapParams p = params_for(0.5);
+    p.bend_distance = 0.07;
+    p.gap_separation = 0.1;
+    EXPECT_TRUE(crease_gaps(regular_prism(8), creases, p).empty());
+    EXPECT_EQ(bends_off_mesh_creases(regular_prism(8), creases, p).size(), 16u);
+    p.gap_separation = 0.25;
+    EXPECT_EQ(crease_gaps(regular_prism(8), creases, p).size(), 16u);
+}
+
 TEST(CreaseSnap, LeavesARightAngleAndACutWithinTheToleranceAlone) {
     const double h = 0.1;
     {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace liftremesh {
 
@@ -34,6 +35,23 @@ AcuteCreases::AcuteCreases(const Mesh& input, double min_turn_deg, double spacin
         junction_turns_.push_back(turn);
     }
     index_.emplace(segments_, spacing);
+}
+
+double AcuteCreases::distance_across(const Eigen::Vector3d& p, long s, double radius) const {
+    double nearest = std::numeric_limits<double>::infinity();
+    if (!index_) return nearest;
+    index_->near(p, radius, found_);
+    for (const int32_t k : found_) {
+        if (k == s) continue;
+        const auto& [a, b] = segments_[k];
+        const Eigen::Vector3d ab = b - a;
+        const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), std::numeric_limits<double>::min()), 0.0, 1.0);
+        // Nearest at an end it shares with s: the crease turning on, not another running beside.
+        const int32_t at = t == 0.0 ? ends_[k].first : t == 1.0 ? ends_[k].second : -1;
+        if (at >= 0 && (at == ends_[s].first || at == ends_[s].second)) continue;
+        nearest = std::min(nearest, (a + t * ab - p).norm());
+    }
+    return nearest;
 }
 
 std::vector<AcuteCreases::Bend> AcuteCreases::bends(double min_turn_deg) const {

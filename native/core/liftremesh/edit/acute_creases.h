@@ -42,6 +42,13 @@ public:
     std::vector<Bend> bends(double min_turn_deg) const;
     //! The input vertices (a, b) of crease edge `s`, in [0, size()).
     const std::pair<int32_t, int32_t>& ends(long s) const { return ends_[s]; }
+    //! Crease edge `s`'s end points, those of its input vertices ends(s).
+    const std::pair<Eigen::Vector3d, Eigen::Vector3d>& segment(long s) const { return segments_[s]; }
+    //! The distance from p to the nearest crease edge other than `s` whose nearest point to p
+    //! is not an end it shares with `s` (where a chain turns on from s, its next edge is nearest
+    //! there; a crease running beside s, or back along it past a hairpin, is nearest across),
+    //! if one passes within `radius`, else more than `radius`. Not thread-safe (as nearest).
+    double distance_across(const Eigen::Vector3d& p, long s, double radius) const;
     //! How far crease edge `s`'s two triangles turn, in degrees.
     double turn(long s) const { return turns_[s]; }
 

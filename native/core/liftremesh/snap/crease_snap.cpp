@@ -8,10 +8,12 @@
 #include "liftremesh/spatial/segment_index.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
 namespace liftremesh {
@@ -23,6 +25,34 @@ namespace {
 constexpr double kMeshCreaseDeg = 15.0;
 
 using Tri = EditableMesh::Tri;
+
+// The edges of a mesh that stand for creases (kMeshCreaseDeg), as issue 35's check counts them,
+// and how near a point one of them passes.
+class MeshCreases {
+public:
+    // Sampled as sparsely as the snap's creases (AcuteCreases at half its radius), or every
+    // bend_distance if that is sparser: the index only narrows the search, the distances decide.
+    MeshCreases(const Mesh& mesh, const CreaseSnapParams& params) {
+        for (const CreaseEdge& e : crease_edges(mesh, kMeshCreaseDeg))
+            edges_.emplace_back(mesh.points.row(e.a).transpose(), mesh.points.row(e.b).transpose());
+        if (!edges_.empty()) index_.emplace(edges_, std::max(params.bend_distance, 0.5 * params.radius));
+    }
+
+    // The distance from p to the nearest of the edges if one passes within r, else more than r.
+    double distance(const Eigen::Vector3d& p, double r) const {
+        double nearest = std::numeric_limits<double>::infinity();
+        if (!index_) return nearest;
+        index_->near(p, r, near_);
+        for (const int32_t k : near_)
+            nearest = std::min(nearest, (closest_point_on_segment(p, edges_[k].first, edges_[k].second) - p).norm());
+        return nearest;
+    }
+
+private:
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges_;
+    std::optional<SegmentIndex> index_;
+    mutable std::vector<int32_t> near_;
+};
 
 // The mesh under moves and flips, with each vertex's triangles kept current.
 class Snapper {
@@ -292,21 +322,59 @@ std::vector<AcuteCreases::Bend> bends_off_mesh_creases(const Mesh& mesh, const A
     if (!(params.bend_distance > 0.0)) return out;
     const std::vector<AcuteCreases::Bend> bends = creases.bends(params.bend_turn_deg);
     if (bends.empty()) return out;
-    // The mesh's own creases, as issue 35's check counts them.
-    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bent;
-    for (const CreaseEdge& e : crease_edges(mesh, kMeshCreaseDeg))
-        bent.emplace_back(mesh.points.row(e.a).transpose(), mesh.points.row(e.b).transpose());
-    if (bent.empty()) return bends;
-    // Sampled as sparsely as the snap's creases (AcuteCreases at half its radius): the index only
-    // narrows the search, the distances below decide.
-    const SegmentIndex index(bent, std::max(params.bend_distance, 0.5 * params.radius));
-    std::vector<int32_t> near;
-    for (const AcuteCreases::Bend& b : bends) {
-        index.near(b.point, params.bend_distance, near);
-        const bool passed = std::any_of(near.begin(), near.end(), [&](int32_t k) {
-            return (closest_point_on_segment(b.point, bent[k].first, bent[k].second) - b.point).norm() <= params.bend_distance;
-        });
-        if (!passed) out.push_back(b);
+    const MeshCreases passing(mesh, params);
+    for (const AcuteCreases::Bend& b : bends)
+        if (passing.distance(b.point, params.bend_distance) > params.bend_distance) out.push_back(b);
+    return out;
+}
+
+std::vector<Eigen::Vector3d> crease_gaps(const Mesh& mesh, const AcuteCreases& creases, const CreaseSnapParams& params) {
+    check_indices(mesh, "mesh");
+    if (!(params.bend_distance >= 0.0) || !std::isfinite(params.bend_distance) || !(params.gap_separation >= 0.0) ||
+        !std::isfinite(params.gap_separation))
+        throw InvalidInput("crease_gaps: the distance and the separation must be finite and not negative");
+    std::vector<Eigen::Vector3d> out;
+    if (!(params.bend_distance > 0.0) || !(params.gap_separation > 0.0) || creases.size() == 0) return out;
+    const MeshCreases passing(mesh, params);
+    // Distances past the separation all rank alike: farther than that, a point is listed first
+    // whatever its distance.
+    const double reach = std::max(params.bend_distance, params.gap_separation);
+    // Only where another crease runs across from the point within twice that: a strip between
+    // two creases, one of which the output's row stands for. Elsewhere the output's crease is a
+    // chord across its own chain's bend (bends_off_mesh_creases).
+    const double strip = 2.0 * reach;
+    std::vector<std::pair<double, Eigen::Vector3d>> missed;
+    for (long s = 0; s < creases.size(); ++s) {
+        const auto& [a, b] = creases.segment(s);
+        constexpr long kMostPieces = 100000; // as SegmentIndex's
+        const long pieces = std::clamp(static_cast<long>(std::ceil((b - a).norm() / params.bend_distance)), 1L, kMostPieces);
+        for (long i = 0; i <= pieces; ++i) {
+            const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / static_cast<double>(pieces));
+            if (const double d = passing.distance(p, reach);
+                d > params.bend_distance && creases.distance_across(p, s, strip) <= strip)
+                missed.emplace_back(std::min(d, reach), p);
+        }
+    }
+    std::stable_sort(missed.begin(), missed.end(), [](const auto& l, const auto& r) { return l.first > r.first; });
+    // The points listed, by cells of the separation's size: a point's neighbours within the
+    // separation lie in the 27 cells round its own.
+    const double cell = params.gap_separation;
+    auto key = [&](const Eigen::Vector3d& p, int dx, int dy, int dz) {
+        const auto c = [&](double x, int d) { return static_cast<uint64_t>(static_cast<int64_t>(std::floor(x / cell)) + d) & 0x1fffffu; };
+        return (c(p.x(), dx) << 42) | (c(p.y(), dy) << 21) | c(p.z(), dz);
+    };
+    std::unordered_map<uint64_t, std::vector<int32_t>> cells;
+    for (const auto& [distance, p] : missed) {
+        bool crowded = false;
+        for (int dx = -1; dx <= 1 && !crowded; ++dx)
+            for (int dy = -1; dy <= 1 && !crowded; ++dy)
+                for (int dz = -1; dz <= 1 && !crowded; ++dz)
+                    if (const auto found = cells.find(key(p, dx, dy, dz)); found != cells.end())
+                        crowded = std::any_of(found->second.begin(), found->second.end(),
+                                              [&](int32_t k) { return (out[k] - p).norm() < params.gap_separation; });
+        if (crowded) continue;
+        cells[key(p, 0, 0, 0)].push_back(static_cast<int32_t>(out.size()));
+        out.push_back(p);
     }
     return out;
 }

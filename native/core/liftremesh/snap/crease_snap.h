@@ -83,6 +83,19 @@ struct CreaseSnapParams {
     double bend_turn_deg = 10.0;
     //! See bend_turn_deg. Not negative and finite; 0 lists none.
     double bend_distance = 0.0;
+    //! Where two creases converge at a few degrees (a thread's flank and crest running out into
+    //! its end face), the strip between them is narrower than an edge: the snap puts one row of
+    //! vertices there, on one crease or between the two, and the other crease runs up to a third
+    //! of an edge from any crease of the output. crease_gaps lists the points of the creases that
+    //! no edge of the output whose triangles turn by more than 15 degrees passes within
+    //! bend_distance of and that another crease passes within 2 gap_separation of, across
+    //! (AcuteCreases::distance_across; a crease's own bends are bends_off_mesh_creases'),
+    //! sampled every bend_distance, farthest
+    //! first, each at least gap_separation from those listed before: each for a vertex of its
+    //! own (pipeline.cpp),
+    //! whose insertion grades the strip's triangles down to its width. Not negative and finite;
+    //! 0 (or a bend_distance of 0) lists none.
+    double gap_separation = 0.0;
 
     //! The floor beside a crease whose faces turn by `turn_deg`: knife_kappa_floor past
     //! knife_turn_deg, else kappa_floor.
@@ -106,6 +119,12 @@ CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const 
 //! spacing, so that the steps that follow the same creases (crease_curves.h) share them.
 CreaseSnapStats snap_to_acute_creases(Mesh& mesh, const Reference& input, const AcuteCreases& creases,
                                       const CreaseSnapParams& params);
+
+//! The points of `creases` that no crease of `mesh` passes near (see
+//! CreaseSnapParams::gap_separation), farthest first (ties in the creases' order). Throws
+//! InvalidInput if bend_distance or gap_separation is negative or not finite, or an index of
+//! `mesh` is out of range.
+std::vector<Eigen::Vector3d> crease_gaps(const Mesh& mesh, const AcuteCreases& creases, const CreaseSnapParams& params);
 
 //! The bends of `creases` that the creases of `mesh` cut across (see
 //! CreaseSnapParams::bend_turn_deg), in AcuteCreases::bends' order; none if params.bend_distance
