@@ -100,6 +100,13 @@ class StrayPiecesOfAFrame(unittest.TestCase):
         self.assertAlmostEqual(output["component_list"][0]["signed_volume"], found["signed_volume"][0],
                                delta=1e-6 * self.shape.Volume)
 
+    @unittest.skip("known gap (docs/known-gaps.md, thin parts): issue 35 asks the frame kept at 6000 "
+                   "vertices, where its edges would be about 4.5 mm, wider than its 3 mm members; a ring of "
+                   "well-shaped triangles round each member takes about 13,000 vertices, where "
+                   "FrameAtTheSizeItsMembersNeed asserts it (-78 for -186 here, kappa min 0.05)")
+    def test_the_frame_keeps_its_topology(self):
+        assert_frame_kept(self, self.report["output"])
+
 
 def assert_frame_kept(test, output):
     """The frame's topology kept (one closed piece facing outward, Euler characteristic -186),

@@ -519,11 +519,10 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
         report.vertices_moved += move_onto_crease_curves(out, *piece.input, creases_over_angle, curves).moved;
     }
     // And the Hausdorff refinement once more: the steps since its first run (the snaps and their
-    // flips, the polish, the mending and the insertions above) keep the surface near the input
-    // where they edit it, but a fan they reshaped beside a knife edge can still cut into its
-    // wedge (on the thread, a vertex of an end face 0.35 mm inside the rim, joined to two
-    // vertices of the flank above it, cut a notch 0.1 mm deep), which a point of the input
-    // there, inserted with its flips, mends.
+    // flips, the polish, the mending, the insertions above, the curve moves) keep the surface
+    // near the input where they edit it, but a fan they reshaped beside a thin wedge can still
+    // cut into it (a vertex of one face joined to two vertices of the face across the wedge
+    // notches its tip), which a point of the input there, inserted with its flips, mends.
     report.vertices_inserted += refine_towards_input(out, reference, steps.hausdorff_refinement).inserted;
     clock.end();
     return out;

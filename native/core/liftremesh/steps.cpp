@@ -59,7 +59,8 @@ StepSettings step_settings(double spacing, double scale, long sites) {
     s.feature_snap.bend_turn_deg = 10.0;
     s.feature_snap.bend_distance = 0.07 * spacing * scale;
     // Where two creases converge, the one the output's row of vertices misses runs up to 0.33 h
-    // from it (the thread's run-outs): points of it a quarter of an edge apart, a vertex each.
+    // from it (the thread's run-outs): points of it a quarter of an edge apart, a vertex each,
+    // where the other runs within half an edge (twice that) across.
     s.feature_snap.gap_separation = 0.25 * spacing * scale;
 
     // The output's crease vertices are the snap's, on the chords, or within its 0.02 h depth of

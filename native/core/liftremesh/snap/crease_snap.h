@@ -89,12 +89,11 @@ struct CreaseSnapParams {
     //! of an edge from any crease of the output. crease_gaps lists the points of the creases that
     //! no edge of the output whose triangles turn by more than 15 degrees passes within
     //! bend_distance of and that another crease passes within 2 gap_separation of, across
-    //! (AcuteCreases::distance_across; a crease's own bends are bends_off_mesh_creases'),
-    //! sampled every bend_distance, farthest
-    //! first, each at least gap_separation from those listed before: each for a vertex of its
-    //! own (pipeline.cpp),
-    //! whose insertion grades the strip's triangles down to its width. Not negative and finite;
-    //! 0 (or a bend_distance of 0) lists none.
+    //! (AcuteCreases::distance_across; a crease's own bends are bends_off_mesh_creases'), sampled
+    //! every bend_distance, farthest first, each at least gap_separation from those listed
+    //! before: each for a vertex of its own (pipeline.cpp), whose insertion grades the strip's
+    //! triangles down to its width. Not negative and finite; 0 (or a bend_distance of 0) lists
+    //! none.
     double gap_separation = 0.0;
 
     //! The floor beside a crease whose faces turn by `turn_deg`: knife_kappa_floor past
