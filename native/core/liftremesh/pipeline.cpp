@@ -321,6 +321,64 @@ void mend_poor(Mesh& out, const Reference& reference, const QualityPolishParams&
     }
 }
 
+// The creases that the output's passes farther than 0.07 h from, where two of them converge
+// (crease_snap.h: crease_gaps), given vertices of their own under the refinement's floor, in
+// `mesh` (h the spacing in its units); returns the vertices added. In a few passes, each
+// against the mesh the last one left: a point's insertion splits the triangles round it, and a
+// point along the strip whose try failed may then find the short edges it needs. Only those
+// within h of a vertex the last pass added are tried again: elsewhere the mesh is as their tries
+// left it. None within 2 h of triangles that cross others, which the untangling moves apart
+// under kappa 0.2 (a member thinner than the edges): a vertex inserted beside them is one more
+// it may move. A pass that lays triangles through others is undone, and the passes end there.
+long insert_crease_gaps(Mesh& mesh, const Reference& reference, const AcuteCreases& creases,
+                        const CreaseSnapParams& snap, const HausdorffRefinementParams& refinement, double h) {
+    constexpr int kGapPasses = 3;
+    auto near_any = [](const KdTree& tree, const Eigen::Vector3d& p, double r) {
+        std::vector<int32_t> found;
+        tree.within(p.data(), r, found);
+        return !found.empty();
+    };
+    bool counted = false;          // the crossings, once there are gaps
+    long crossings = 0;
+    std::optional<KdTree> tangled; // the corners of the triangles crossing, if any
+    std::optional<KdTree> added;   // the vertices the last pass added
+    long total = 0;
+    for (int pass = 0; pass < kGapPasses; ++pass) {
+        std::vector<Eigen::Vector3d> gaps = crease_gaps(mesh, creases, snap);
+        if (!gaps.empty() && !counted) {
+            counted = true;
+            const auto pairs = self_intersecting_pairs(mesh, AabbTree(mesh));
+            crossings = static_cast<long>(pairs.size());
+            if (!pairs.empty()) {
+                Points corners(6 * pairs.size(), 3);
+                Eigen::Index row = 0;
+                for (const auto& [s, t] : pairs)
+                    for (const int32_t f : {s, t})
+                        for (int j = 0; j < 3; ++j) corners.row(row++) = mesh.points.row(mesh.triangles(f, j));
+                tangled.emplace(corners);
+            }
+        }
+        gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
+                                  [&](const Eigen::Vector3d& g) {
+                                      return (tangled && near_any(*tangled, g, 2.0 * h)) ||
+                                             (added && !near_any(*added, g, h));
+                                  }),
+                   gaps.end());
+        if (gaps.empty()) break;
+        Mesh before = mesh;
+        const long inserted =
+            insert_input_points(mesh, reference, gaps, snap.min_depth, refinement).inserted;
+        if (inserted == 0) break;
+        if (count_self_intersections(mesh, AabbTree(mesh)) > crossings) {
+            mesh = std::move(before);
+            break;
+        }
+        total += inserted;
+        added.emplace(Points(mesh.points.bottomRows(mesh.points.rows() - before.points.rows()))); // appended
+    }
+    return total;
+}
+
 // Optimises the sites of one piece, triangulates them and repairs the result (all but the
 // untangling, which sees every piece at once), in input units; adds its counts to the report.
 Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, const UnitBallTransform& to_unit,
@@ -455,61 +513,10 @@ Mesh remesh_piece(Piece& piece, std::uint64_t seed, const RemeshParams& params, 
     const CreaseSnapStats again = snap_to_acute_creases(out, reference, creases_over_angle, onto_creases);
     report.edges_flipped += again.flipped;
     report.vertices_moved += again.moved;
-    // Then the creases that the output's still passes farther than 0.07 h from, where two of
-    // them converge (crease_snap.h: crease_gaps) get vertices of their own, under the
-    // refinement's floor, a few passes, each against the mesh the last one left: a point's
-    // insertion splits the triangles round it, and a point along the strip whose try failed
-    // may then find the short edges it needs. Only those within h of a vertex the last pass
-    // added are tried again: elsewhere the mesh is as their tries left it. None within 2 h of
-    // triangles that cross others, which the untangling moves apart under kappa 0.2 (a member
-    // thinner than the edges): a vertex inserted beside them is one more it may move. A pass
-    // that lays triangles through others is undone, and the passes end there.
-    if (params.feature_angle < 180.0) {
-        constexpr int kGapPasses = 3;
-        const double h = spacing * to_unit.scale;
-        auto near_any = [](const KdTree& tree, const Eigen::Vector3d& p, double r) {
-            std::vector<int32_t> found;
-            tree.within(p.data(), r, found);
-            return !found.empty();
-        };
-        bool counted = false;          // the crossings, once there are gaps
-        long crossings = 0;
-        std::optional<KdTree> tangled; // the corners of the triangles crossing, if any
-        std::optional<KdTree> added;   // the vertices the last pass added
-        for (int pass = 0; pass < kGapPasses; ++pass) {
-            std::vector<Eigen::Vector3d> gaps = crease_gaps(out, creases_over_angle, onto_creases);
-            if (!gaps.empty() && !counted) {
-                counted = true;
-                const auto pairs = self_intersecting_pairs(out, AabbTree(out));
-                crossings = static_cast<long>(pairs.size());
-                if (!pairs.empty()) {
-                    Points corners(6 * pairs.size(), 3);
-                    Eigen::Index row = 0;
-                    for (const auto& [s, t] : pairs)
-                        for (const int32_t f : {s, t})
-                            for (int j = 0; j < 3; ++j) corners.row(row++) = out.points.row(out.triangles(f, j));
-                    tangled.emplace(corners);
-                }
-            }
-            gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
-                                      [&](const Eigen::Vector3d& g) {
-                                          return (tangled && near_any(*tangled, g, 2.0 * h)) ||
-                                                 (added && !near_any(*added, g, h));
-                                      }),
-                       gaps.end());
-            if (gaps.empty()) break;
-            Mesh before = out;
-            const long inserted =
-                insert_input_points(out, reference, gaps, onto_creases.min_depth, steps.hausdorff_refinement).inserted;
-            if (inserted == 0) break;
-            if (count_self_intersections(out, AabbTree(out)) > crossings) {
-                out = std::move(before);
-                break;
-            }
-            report.vertices_inserted += inserted;
-            added.emplace(Points(out.points.bottomRows(out.points.rows() - before.points.rows()))); // appended
-        }
-    }
+    // Then the creases that the output's still passes far from, where two of them converge.
+    if (params.feature_angle < 180.0)
+        report.vertices_inserted += insert_crease_gaps(out, reference, creases_over_angle, onto_creases,
+                                                       steps.hausdorff_refinement, spacing * to_unit.scale);
     // Last, as every step before keeps the surface on the input: the vertices on the chords of a
     // curved crease onto the curve (crease_curves.h), with the explicit creases only.
     if (params.feature_angle < 180.0) {
