@@ -19,7 +19,7 @@ bool flip_folds(const Eigen::Vector3d& e) {
     const EditableMesh mesh(m);
     const auto quad = mesh.quad_of(mesh.edge_uses().at(edge_key(0, 1)));
     EXPECT_TRUE(quad.has_value());
-    return flip_folds_rim(mesh, *quad, mesh.fans());
+    return flip_folds_rim(mesh, *quad, fans_of(mesh.fans()));
 }
 
 // The same quad with (a, e, f) on its corner a, standing where the flip's (a, d, c), which rises
@@ -30,7 +30,7 @@ bool flip_crosses(const Eigen::Vector3d& e, const Eigen::Vector3d& f) {
     const EditableMesh mesh(m);
     const auto quad = mesh.quad_of(mesh.edge_uses().at(edge_key(0, 1)));
     EXPECT_TRUE(quad.has_value());
-    return flip_crosses_fans(mesh, *quad, mesh.fans());
+    return flip_crosses_fans(mesh, *quad, fans_of(mesh.fans()));
 }
 
 } // namespace

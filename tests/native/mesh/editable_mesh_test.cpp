@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace liftremesh;
 
 namespace {
@@ -69,28 +71,78 @@ TEST(EditableMesh, UsesAroundFlaggedVerticesAreThoseOfTheWholeMeshThere) {
     }
 }
 
-// What the flips round an edit read: the fan of every corner of every quad with a flagged
+// What the flips round an edit read: the fan of every corner of every quad with a listed
 // triangle, as the whole mesh's fans have it; and far from the edit, nothing.
-TEST(EditableMesh, FansAroundFlaggedTrianglesAreThoseOfTheWholeMeshAtTheirQuads) {
+TEST(EditableMesh, FansNearListedTrianglesAreThoseOfTheWholeMeshAtTheirQuads) {
     EditableMesh m(test::make_cube(0.5, 4));
+    m.keep_fans();
     const CompressedRows all = m.fans();
-    const std::vector<char> around = flags(m.tris.size(), {5, 40});
-    const CompressedRows near = m.fans_around(around);
-    auto row = [](const CompressedRows& rows, int32_t v) { return std::vector<int32_t>(rows.begin(v), rows.end(v)); };
+    const std::vector<int> around = {5, 40};
+    const EditableMesh::FanSnapshot near = m.fans_near(around);
+    auto row = [](const std::pair<const int32_t*, const int32_t*>& r) { return std::vector<int32_t>(r.first, r.second); };
     std::vector<char> corner(m.points.size(), 0);
     for (const auto& [key, uses] : m.edge_uses()) {
         const auto quad = m.quad_of(uses);
-        if (!quad || !(around[quad->t1] || around[quad->t2])) continue;
+        if (!quad || !(quad->t1 == 5 || quad->t1 == 40 || quad->t2 == 5 || quad->t2 == 40)) continue;
         for (const int32_t v : {quad->a, quad->b, quad->c, quad->d}) corner[v] = 1;
     }
     long empty = 0;
     for (int32_t v = 0; v < static_cast<int32_t>(m.points.size()); ++v) {
-        const bool given = near.begin(v) != near.end(v);
-        if (corner[v]) EXPECT_TRUE(given) << "point " << v;
-        if (given) EXPECT_EQ(row(near, v), row(all, v)) << "point " << v; // whole
-        else ++empty;
+        const auto given = near(v);
+        if (corner[v]) EXPECT_NE(given.first, given.second) << "point " << v;
+        if (given.first != given.second)
+            EXPECT_EQ(row(given), row({all.begin(v), all.end(v)})) << "point " << v; // whole, in triangle order
+        else
+            ++empty;
     }
     EXPECT_GT(empty, static_cast<long>(m.points.size()) / 2); // far from the two triangles
+}
+
+// The uses near some points, found through the kept fans after edits, are those a scan of the
+// edited mesh finds; and the journal puts the mesh and its fans back as they were.
+TEST(EditableMesh, KeptFansFollowEditsAndTheJournalUndoesThem) {
+    EditableMesh m(test::make_cube(0.5, 4));
+    m.keep_fans();
+    const std::vector<EditableMesh::Tri> before = m.tris;
+    const size_t points = m.points.size();
+    auto fans_match_a_scan = [&]() {
+        const CompressedRows all = m.fans();
+        for (int32_t v = 0; v < static_cast<int32_t>(m.points.size()); ++v) {
+            std::vector<int32_t> kept = m.fan(v);
+            std::sort(kept.begin(), kept.end());
+            if (kept != std::vector<int32_t>(all.begin(v), all.end(v))) return false;
+        }
+        return true;
+    };
+    m.begin_edits();
+    // An edge of triangle 7 split, then every edge round the new point flipped that can be.
+    const auto quad = m.quad_at(7, 0);
+    ASSERT_TRUE(quad);
+    const int32_t mid = m.split_edge(*quad, 0.5 * (m.points[quad->a] + m.points[quad->b]));
+    std::vector<int> flipped;
+    const long flips = m.flip_pass_near(m.fan(mid), [](const EditableMesh::Quad&) { return true; }, flipped);
+    EXPECT_GT(flips, 0);
+    EXPECT_EQ(flipped.size(), 2u * static_cast<size_t>(flips));
+    EXPECT_TRUE(fans_match_a_scan());
+    EXPECT_TRUE(m.joined(mid, quad->a));
+    const std::vector<int32_t> near = {mid, 3};
+    const auto local = m.edge_uses_near(near);
+    std::vector<char> flagged(m.points.size(), 0);
+    for (const int32_t v : near) flagged[v] = 1;
+    const auto scanned = m.edge_uses_around(flagged);
+    ASSERT_EQ(local.size(), scanned.size());
+    for (const auto& [key, uses] : scanned) {
+        ASSERT_EQ(local.count(key), 1u);
+        EXPECT_EQ(local.at(key).size(), uses.size());
+        for (int i = 0; i < std::min(uses.count, 2); ++i) {
+            EXPECT_EQ(local.at(key)[i].tri, uses[i].tri);
+            EXPECT_EQ(local.at(key)[i].j, uses[i].j);
+        }
+    }
+    m.roll_back();
+    EXPECT_EQ(m.tris, before);
+    EXPECT_EQ(m.points.size(), points);
+    EXPECT_TRUE(fans_match_a_scan());
 }
 
 TEST(EditableMesh, QualityFlipOnlyForANearlyPlanarQuadThatGetsBetter) {

@@ -58,11 +58,11 @@ int folded_edges_among(const EditableMesh& mesh, const std::vector<int>& tris, c
         });
 }
 
-bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
+bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& q, const TrianglesOf& fans) {
     // The triangle other than the quad's on edge u-v, or -1.
     auto across = [&](int32_t u, int32_t v) {
         for (int32_t w : {u, v})
-            for (const int32_t* t = fans.begin(w); t != fans.end(w); ++t) {
+            for (auto [t, last] = fans(w); t != last; ++t) {
                 if (*t == q.t1 || *t == q.t2) continue;
                 const EditableMesh::Tri& x = mesh.tris[*t];
                 if (std::find(x.begin(), x.end(), u) != x.end() && std::find(x.begin(), x.end(), v) != x.end()) return *t;
@@ -102,9 +102,12 @@ long crossings_among(const EditableMesh& mesh, std::vector<int> tris) {
     return crossings_among(mesh, as_now);
 }
 
-bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& q, const CompressedRows& fans) {
+bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& q, const TrianglesOf& fans) {
     std::vector<int32_t> around;
-    for (int32_t w : {q.a, q.b, q.c, q.d}) around.insert(around.end(), fans.begin(w), fans.end(w));
+    for (int32_t w : {q.a, q.b, q.c, q.d}) {
+        const auto [first, last] = fans(w);
+        around.insert(around.end(), first, last);
+    }
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
     auto crossings = [&](const EditableMesh::Tri& u, const EditableMesh::Tri& v) {

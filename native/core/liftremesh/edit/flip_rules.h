@@ -86,6 +86,11 @@ inline bool folded(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return 
 
 //! A vertex's triangles: [first, second) of its indices.
 using TrianglesOf = std::function<std::pair<const int32_t*, const int32_t*>(int32_t)>;
+//! The rows of `fans` (a point's triangles, as EditableMesh::fans() gives them) as TrianglesOf;
+//! `fans` must outlive it.
+inline TrianglesOf fans_of(const CompressedRows& fans) {
+    return [&fans](int32_t v) { return std::make_pair(fans.begin(v), fans.end(v)); };
+}
 
 //! How many edges of the triangles `tris` (repeats allowed) are folded (kCosFolded), each
 //! counted once; `triangles_of` gives each vertex's triangles as the mesh has them now.
@@ -117,11 +122,12 @@ int count_folded_edges(const Tris& tris, const Corners& corners, const Normal& n
 
 //! Whether flipping the quad's edge folds one of the new triangles onto the triangle across
 //! the quad's rim (their normals turned by more than 170 degrees, as the report counts folded
-//! edges) where the old one on that rim edge was not folded so. `fans` is mesh.fans(), possibly
-//! made before other flips of the same pass: a triangle flipped since keeps two of its corners,
-//! so the triangle across a rim edge is looked for among both its end points' triangles. A flip
-//! beside a knife edge can turn a triangle that leaned over the edge onto its other face.
-bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
+//! edges) where the old one on that rim edge was not folded so. `fans` gives the quad's corners'
+//! triangles, possibly as they were before other flips of the same pass (fans_of(mesh.fans()),
+//! EditableMesh::fans_near): a triangle flipped since keeps two of its corners, so the triangle
+//! across a rim edge is looked for among both its end points' triangles. A flip beside a knife
+//! edge can turn a triangle that leaned over the edge onto its other face.
+bool flip_folds_rim(const EditableMesh& mesh, const EditableMesh::Quad& quad, const TrianglesOf& fans);
 
 //! How many pairs of the triangles `tris` (each given once; made or not, on the mesh's points)
 //! cross (self_intersection.h: triangles_cross).
@@ -134,7 +140,7 @@ long crossings_among(const EditableMesh& mesh, std::vector<int> tris);
 //! the quad's corners (self_intersection.h: triangles_cross) than the old two do. `fans` as in
 //! flip_folds_rim; a triangle flipped since is taken as it is now. Beside a knife edge a flip
 //! for distance can lay a triangle through its neighbours on the other face.
-bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& quad, const CompressedRows& fans);
+bool flip_crosses_fans(const EditableMesh& mesh, const EditableMesh::Quad& quad, const TrianglesOf& fans);
 
 //! Whether flipping the quad's edge takes it off a crease it cuts across (the Hausdorff
 //! refinement's distance rule): the midpoint of the edge is farther than `tolerance` from the

@@ -1,7 +1,10 @@
 // A triangle mesh under local edits (edge and triangle splits, edge flips), as the steps after
-// the restricted Delaunay triangulation make them: refining hole patches (patch_refinement.h)
-// and inserting the input's farthest points (hausdorff_refinement.h). Points and triangles in
-// plain vectors; edges are found through edge_uses(), made again after a batch of edits.
+// the restricted Delaunay triangulation make them: refining hole patches (patch_refinement.h),
+// inserting the input's farthest points (hausdorff_refinement.h), moving vertices onto creases
+// (crease_snap.h). Points and triangles in plain vectors; edges are found through edge_uses(),
+// made again after a batch of edits, or, for many small edits in a large mesh, through each
+// point's fan kept current (keep_fans()), which finds an edit's neighbourhood without a scan of
+// the triangles. An edit journal (begin_edits()) undoes a try that did not work out.
 #pragma once
 
 #include "liftremesh/mesh/compressed_rows.h"
@@ -55,11 +58,50 @@ public:
     std::optional<Quad> quad_of(const Uses& uses) const;
     //! Each point's triangles (its fan), in triangle order.
     CompressedRows fans() const;
-    //! The fans of the corners of the triangles that share a point with one flagged in `around`
-    //! (#tris flags), as fans() gives them; the other rows empty. Every corner of a quad with a
-    //! flagged triangle has its whole fan here; three scans of the triangles, but the pairs
-    //! sorted into rows are those of the edits' neighbourhood, not of the mesh.
-    CompressedRows fans_around(const std::vector<char>& around) const;
+
+    //! Keeps each point's fan current from now on (fan()). While they are kept, change the
+    //! triangles only through set_tri(), add_tri() and the edits below, which use them.
+    void keep_fans();
+    //! A point's triangles, in no particular order (keep_fans(); none for a point without).
+    const std::vector<int32_t>& fan(int32_t v) const;
+    //! Triangle t becomes `tri` (journalled, and its fans kept, if they are).
+    void set_tri(int t, const Tri& tri);
+    //! Appends a triangle and returns its index (its fans kept, if they are).
+    int add_tri(const Tri& tri);
+    //! Starts a journal of the edits: the triangles changed, each as it was, and how many points
+    //! and triangles there were (a point moved is not journalled).
+    void begin_edits();
+    //! Puts the triangles back as begin_edits() found them, drops the points appended since,
+    //! and ends the journal.
+    void roll_back();
+    //! Ends the journal, keeping the edits.
+    void keep_edits();
+
+    //! The following find an edit's neighbourhood through the kept fans (keep_fans()).
+    //! The uses of the edges with an end among `near` (points), as edge_uses_around gives them.
+    std::unordered_map<uint64_t, Uses> edge_uses_near(std::vector<int32_t> near) const;
+    //! The quad of edge j of triangle t (t as t1), as quad_of gives it.
+    std::optional<Quad> quad_at(int t, int j) const;
+    //! Whether an edge joins u and v.
+    bool joined(int32_t u, int32_t v) const;
+    //! The fans of the corners of the triangles that share a point with one of `tris`, each in
+    //! triangle order, as they are now; no triangles for the other points. Every corner of a
+    //! quad with a triangle among `tris` has its whole fan here. Called with a point, gives its
+    //! fan as a pair of pointers (flip_rules.h: TrianglesOf).
+    class FanSnapshot {
+    public:
+        std::pair<const int32_t*, const int32_t*> operator()(int32_t v) const;
+
+    private:
+        friend class EditableMesh;
+        std::vector<int32_t> points_; // ascending, each with a row
+        CompressedRows rows_;
+    };
+    FanSnapshot fans_near(const std::vector<int>& tris) const;
+    //! flip_pass_around over the triangles `tris` lists (flip_pass_around's `around`); `flipped`
+    //! comes back listing the triangles changed, in no particular order.
+    long flip_pass_near(std::vector<int> tris, const std::function<bool(const Quad&)>& accept,
+                        std::vector<int>& flipped);
     //! A flag per point: an end of an edge without exactly two triangles.
     std::vector<char> border_points() const;
 
@@ -105,6 +147,16 @@ public:
 
 private:
     CompressedRows fans_of(const std::vector<char>* listed) const;
+    // The triangles with a corner among `near` (ascending, unique), ascending.
+    std::vector<int> tris_near(const std::vector<int32_t>& near) const;
+
+    struct Journal {
+        size_t points = 0, tris = 0;
+        std::vector<std::pair<int, Tri>> changed; // in order: undone last to first
+    };
+    bool keep_ = false;
+    std::vector<std::vector<int32_t>> fans_; // kept fans, grown with the points they meet
+    std::optional<Journal> journal_;
 };
 
 } // namespace liftremesh

@@ -23,8 +23,7 @@ using Tri = EditableMesh::Tri;
 
 // The splits that may follow a point's own to lift the triangles round it to the floor.
 constexpr int kMendSplits = 3;
-// Each point tried costs passes over the whole mesh (a copy to restore, the flips' fans), and a
-// scan's creases can meet in thousands of junctions: the points farthest from a vertex are
+// A scan's creases can meet in thousands of junctions: the points farthest from a vertex are
 // tried first, this many in all.
 constexpr long kMaxPointsTried = 64;
 
@@ -54,12 +53,14 @@ struct Witness {
 class Refinement {
 public:
     Refinement(const Mesh& mesh, const AabbTree& input, const HausdorffRefinementParams& params)
-        : mesh_(mesh), input_(input), params_(params) {}
+        : mesh_(mesh), input_(input), params_(params) {
+        mesh_.keep_fans(); // each try's flips and splits are local: their neighbourhood from the fans
+    }
 
     // Inserts the witnesses of the current mesh; returns how many, marking the triangles made.
     long insert(const std::vector<Eigen::Vector3d>& samples, long allowed) {
         const std::vector<Witness> witnesses = find_witnesses(samples);
-        near_.assign(mesh_.tris.size(), 0);
+        clear_near();
         made_.clear();
         if (witnesses.empty()) return 0;
         std::vector<char> flagged(mesh_.points.size(), 0);
@@ -131,18 +132,19 @@ public:
             }
             if (tries == 0 || static_cast<long>(mesh_.points.size() - vertices) >= budget) break;
             --tries;
-            near_.assign(mesh_.tris.size(), 0);
+            clear_near();
             made_.clear();
-            EditableMesh before = mesh_;
+            mesh_.begin_edits();
             long flips = 0;
             if (!insert_and_mend(t, points[i], floors.empty() ? params_.kappa_floor : floors[i], flips)) {
-                mesh_ = std::move(before);
+                mesh_.roll_back();
                 continue;
             }
+            mesh_.keep_edits();
             flipped += flips;
             changed.resize(mesh_.tris.size(), 0);
-            for (size_t f = 0; f < near_.size(); ++f) // the triangles made and changed by this try
-                if (near_[f] && !std::exchange(changed[f], 1)) made.push_back(static_cast<int32_t>(f));
+            for (const int f : near_list_) // the triangles made and changed by this try
+                if (!std::exchange(changed[f], 1)) made.push_back(f);
         }
         return static_cast<long>(mesh_.points.size() - vertices);
     }
@@ -151,13 +153,12 @@ public:
     // Crease flips keep `floor` (the refinement's, or the point's insert_points tries).
     long flip_near_insertions(double floor) {
         long flipped = 0;
+        std::vector<int> changed;
         for (int pass = 0; pass < 5; ++pass) {
-            fans_ = mesh_.fans_around(near_); // should_flip's quads all have a triangle there
-            std::vector<char> changed;
-            const long flips =
-                mesh_.flip_pass_around(near_, [&](const EditableMesh::Quad& q) { return should_flip(q, floor); }, changed);
-            for (size_t t = 0; t < changed.size(); ++t)
-                if (changed[t]) near_[t] = 1;
+            fans_ = mesh_.fans_near(near_list_); // should_flip's quads all have a triangle there
+            const long flips = mesh_.flip_pass_near(
+                near_list_, [&](const EditableMesh::Quad& q) { return should_flip(q, floor); }, changed);
+            for (const int t : changed) mark_near(t);
             flipped += flips;
             if (flips == 0) break;
         }
@@ -167,6 +168,21 @@ public:
     void write_to(Mesh& mesh) const { mesh_.write_to(mesh, 0); }
 
 private:
+    // Flags triangle f as made or changed this round (near_, listed in near_list_).
+    void mark_near(int f) {
+        if (static_cast<size_t>(f) >= near_.size()) near_.resize(static_cast<size_t>(f) + 1, 0);
+        if (!near_[f]) {
+            near_[f] = 1;
+            near_list_.push_back(f);
+        }
+    }
+    // Clears the flags, near_ at least as long as the triangles.
+    void clear_near() {
+        for (const int f : near_list_) near_[f] = 0;
+        near_list_.clear();
+        if (near_.size() < mesh_.tris.size()) near_.resize(mesh_.tris.size(), 0);
+    }
+
     // The samples farther than the tolerance from the mesh, farthest first. A sample is near
     // the mesh if a triangle lies within the tolerance: the one found last round if it has not
     // changed since, else the one that proved its thread's previous sample near (consecutive
@@ -224,13 +240,12 @@ private:
         flips += flip_near_insertions(floor);
         for (int k = 0;; ++k) {
             double worst = 2.0;
-            int32_t worst_t = -1;
-            for (size_t f = 0; f < near_.size(); ++f)
-                if (near_[f])
-                    if (const double kappa = mesh_.kappa(mesh_.tris[f]); kappa < worst) {
-                        worst = kappa;
-                        worst_t = static_cast<int32_t>(f);
-                    }
+            int32_t worst_t = -1; // the first in triangle order of the worst
+            for (const int f : near_list_)
+                if (const double kappa = mesh_.kappa(mesh_.tris[f]); kappa < worst || (kappa == worst && f < worst_t)) {
+                    worst = kappa;
+                    worst_t = f;
+                }
             if (worst >= floor) return true;
             if (k == kMendSplits) return false;
             const Tri w = mesh_.tris[worst_t];
@@ -247,9 +262,8 @@ private:
     // insert_at with the uses of t's edges as they are now, under no floor: insert_and_mend
     // judges the triangles after the flips.
     bool split_now(int32_t t, const Eigen::Vector3d& p) {
-        std::vector<char> flagged(mesh_.points.size(), 0);
-        for (int32_t v : mesh_.tris[t]) flagged[v] = 1;
-        return insert_at(t, p, mesh_.edge_uses_around(flagged), 0.0, true);
+        const Tri x = mesh_.tris[t];
+        return insert_at(t, p, mesh_.edge_uses_near({x[0], x[1], x[2]}), 0.0, true);
     }
 
     // Splits triangle t at p, or one of its edges: an edge shared with a triangle unchanged this
@@ -328,34 +342,36 @@ private:
             return false;
         }
         for (const auto& [f, made] : chosen->replace) {
-            mesh_.tris[f] = made;
-            near_[f] = 1;
+            mesh_.set_tri(f, made);
+            mark_near(f);
             made_.push_back(f);
         }
         for (const Tri& made : chosen->append) {
-            made_.push_back(static_cast<int>(mesh_.tris.size()));
-            mesh_.tris.push_back(made);
+            const int f = mesh_.add_tri(made);
+            mark_near(f);
+            made_.push_back(f);
         }
-        near_.resize(mesh_.tris.size(), 1);
         return true;
     }
 
     bool should_flip(const EditableMesh::Quad& q, double floor) const {
-        if (flip_folds_rim(mesh_, q, fans_)) return false;
+        if (flip_folds_rim(mesh_, q, fans_now_)) return false;
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         const bool fits = before > params_.tolerance && after < 0.5 * before
                               ? crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor)
                               : quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
-        return fits && !flip_crosses_fans(mesh_, q, fans_);
+        return fits && !flip_crosses_fans(mesh_, q, fans_now_);
     }
 
     EditableMesh mesh_;
     const AabbTree& input_;
     const HausdorffRefinementParams& params_;
     std::vector<char> near_;      // per triangle: made or changed this round
+    std::vector<int> near_list_;  // the same, listed
     std::vector<int> made_;       // the triangles insert_at made or changed since near_ was cleared
-    CompressedRows fans_;         // per point near near_, its triangles at the start of the flip pass
+    EditableMesh::FanSnapshot fans_; // per point near near_, its triangles at the start of the flip pass
+    const TrianglesOf fans_now_ = [this](int32_t v) { return fans_(v); };
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
 };
 

@@ -78,11 +78,12 @@ long untangle_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     std::vector<char> around(edit.tris.size(), 0), changed;
     for (const auto& [s, t] : crossings) around[static_cast<size_t>(s)] = around[static_cast<size_t>(t)] = 1;
     const CompressedRows fans = edit.fans();
+    const TrianglesOf triangles_of = fans_of(fans);
     const auto accept = [&](const EditableMesh::Quad& q) {
         const Tri &t1 = edit.tris[q.t1], &t2 = edit.tris[q.t2];
         const auto [n1, n2] = EditableMesh::flipped(q);
         if (edit.normal(n1).isZero(0.0) || edit.normal(n2).isZero(0.0)) return false;
-        if (flip_folds_rim(edit, q, fans)) return false; // a crossing traded for a fold
+        if (flip_folds_rim(edit, q, triangles_of)) return false; // a crossing traded for a fold
         const double worse_before = std::min(edit.kappa(t1), edit.kappa(t2));
         if (!(std::min(edit.kappa(n1), edit.kappa(n2)) >= std::min(worse_before, params.kappa_floor))) return false;
         if (!(triangles.crossings_of({n1, n2}, {q.t1, q.t2}) < triangles.crossings_of({t1, t2}, {q.t1, q.t2})))
@@ -156,7 +157,7 @@ long move_pass(Mesh& mesh, const AabbTree& mesh_tree, const AabbTree& input,
     const CompressedRows fans = edit.fans();
     const std::vector<int32_t> candidates = inner_vertices_of(edit, crossings);
 
-    const TrianglesOf triangles_of = [&fans](int32_t w) { return std::make_pair(fans.begin(w), fans.end(w)); };
+    const TrianglesOf triangles_of = fans_of(fans);
     long moves = 0;
     std::vector<int> fan;
     std::vector<Tri> fan_tris;
