@@ -58,10 +58,8 @@ private:
 class Snapper {
 public:
     Snapper(Mesh& mesh, const AabbTree& input, const CreaseSnapParams& params)
-        : mesh_(mesh), input_(input), params_(params), fans_(mesh_.points.size()),
-          cos_off_(std::cos(60.0 * M_PI / 180.0)) {
-        for (size_t t = 0; t < mesh_.tris.size(); ++t)
-            for (int32_t v : mesh_.tris[t]) fans_[v].push_back(static_cast<int>(t));
+        : mesh_(mesh), input_(input), params_(params), cos_off_(std::cos(60.0 * M_PI / 180.0)) {
+        mesh_.keep_fans();
     }
 
     const EditableMesh& mesh() const { return mesh_; }
@@ -69,25 +67,25 @@ public:
     // Moves v to x with the flips that follow, or leaves everything as it was (see the header),
     // where the fan of v lies farther than `depth` from x; the move and its flips keep `floor`.
     bool snap(int32_t v, const Eigen::Vector3d& x, double depth, long& flips, double floor) {
-        if (fans_[v].empty()) return false; // not a vertex of the surface
+        if (mesh_.fan(v).empty()) return false; // not a vertex of the surface
         // Only where the crease is cut deeper than the tolerance: the fan of v, which is all the
         // mesh there, lies farther from x than that.
         double cut2 = std::numeric_limits<double>::infinity();
-        for (int t : fans_[v]) {
+        for (int t : mesh_.fan(v)) {
             const Tri& f = mesh_.tris[t];
             const Eigen::Vector3d near = closest_point_on_triangle(x, mesh_.points[f[0]], mesh_.points[f[1]], mesh_.points[f[2]]);
             cut2 = std::min(cut2, (near - x).squaredNorm());
         }
         if (!(cut2 > depth * depth)) return false;
         saved_.clear();
-        for (int t : fans_[v]) save(t);
+        for (int t : mesh_.fan(v)) save(t);
         const Eigen::Vector3d was = mesh_.points[v];
         const Measure before = measure_saved(); // the fan's originals, v where it was
         // The triangles round the fan, whose edges a move and its flips may fold, and which
         // they may lay through each other beside a knife edge.
         std::vector<int> region;
-        for (int t : fans_[v])
-            for (int32_t w : mesh_.tris[t]) region.insert(region.end(), fans_[w].begin(), fans_[w].end());
+        for (int t : mesh_.fan(v))
+            for (int32_t w : mesh_.tris[t]) region.insert(region.end(), mesh_.fan(w).begin(), mesh_.fan(w).end());
         const int folded_before = folded_edges(region);
         const long crossed_before = crossings_among(mesh_, region);
         mesh_.points[v] = x;
@@ -111,7 +109,7 @@ public:
             return true;
         }
         mesh_.points[v] = was;
-        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) set(it->first, it->second);
+        for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) mesh_.set_tri(it->first, it->second);
         return false;
     }
 
@@ -152,7 +150,8 @@ private:
     // triangle of its fan onto one beyond it that no flip of the fan sees.
     int folded_edges(const std::vector<int>& tris) const {
         return folded_edges_among(mesh_, tris, [this](int32_t v) {
-            return std::make_pair(fans_[v].data(), fans_[v].data() + fans_[v].size());
+            const std::vector<int32_t>& fan = mesh_.fan(v);
+            return std::make_pair(fan.data(), fan.data() + fan.size());
         });
     }
 
@@ -167,34 +166,7 @@ private:
             if (s.first == t) return;
         saved_.emplace_back(t, mesh_.tris[t]);
     }
-    void set(int t, const Tri& tri) {
-        for (int32_t v : mesh_.tris[t]) fans_[v].erase(std::find(fans_[v].begin(), fans_[v].end(), t));
-        mesh_.tris[t] = tri;
-        for (int32_t v : tri) fans_[v].push_back(t);
-    }
-    // The quad of edge j of triangle t (EditableMesh::quad_of, t as t1), from the fan of its
-    // first end: the uses of the edge, t's first.
-    std::optional<EditableMesh::Quad> quad(int t, int j) const {
-        const int32_t a = mesh_.tris[t][j], b = mesh_.tris[t][(j + 1) % 3];
-        EditableMesh::Uses uses;
-        auto add = [&](int s, int i) {
-            if (uses.count < 2) uses.first[uses.count] = {s, i};
-            ++uses.count;
-        };
-        add(t, j);
-        for (int s : fans_[a])
-            for (int i = 0; i < 3; ++i) {
-                const int32_t p = mesh_.tris[s][i], q = mesh_.tris[s][(i + 1) % 3];
-                if (s != t && ((p == a && q == b) || (p == b && q == a))) add(s, i);
-            }
-        return mesh_.quad_of(uses);
-    }
-    bool joined(int32_t c, int32_t d) const {
-        for (int s : fans_[c])
-            for (int32_t w : mesh_.tris[s])
-                if (w == d) return true;
-        return false;
-    }
+
     // A quality flip (EditableMesh::flip_improves_quality) of a pair the move left under the
     // floor, its new diagonal within the tolerance of the input (see the header).
     bool lifts_under_floor(const EditableMesh::Quad& q, double d_after, double floor) const {
@@ -202,8 +174,8 @@ private:
                d_after <= params_.tolerance && mesh_.flip_improves_quality(q);
     }
     long try_flip(int t, int j, const Measure& before, double floor) {
-        const auto q = quad(t, j);
-        if (!q || q->c == q->d || joined(q->c, q->d)) return 0;
+        const auto q = mesh_.quad_at(t, j);
+        if (!q || q->c == q->d || mesh_.joined(q->c, q->d)) return 0;
         const auto [d_before, d_after] = diagonal_distances(mesh_, *q, input_);
         if (!crease_flip_fits(mesh_, *q, d_before, d_after, params_.tolerance,
                               std::min(floor, before.worst_kappa)) &&
@@ -214,15 +186,14 @@ private:
         if (is_off(n1) || is_off(n2)) return 0;
         save(q->t1);
         save(q->t2);
-        set(q->t1, n1);
-        set(q->t2, n2);
+        mesh_.set_tri(q->t1, n1);
+        mesh_.set_tri(q->t2, n2);
         return 1;
     }
 
     EditableMesh mesh_;
     const AabbTree& input_;
     const CreaseSnapParams& params_;
-    std::vector<std::vector<int>> fans_;
     const double cos_off_;
     std::vector<std::pair<int, Tri>> saved_; // per triangle changed in this snap, what it was
 };
