@@ -7,7 +7,9 @@
   t13 with another process keeping one core busy, beside Gmsh on the same busy host;
 - fig9: the paper's Fig. 9 job, a CAD part of about 40k triangles (the demo bracket tessellated
   finely by FreeCAD) to 50k vertices, beside Gmsh.
-Each run is made once: these are long, and the shared table's repeats show the noise.
+Each run is made once (but t13's on one thread and on two: see threads()): these are long, and
+the shared table's repeats show the noise. targets_table() sets the figures beside issue 36's
+targets.
 """
 
 import filecmp
@@ -87,13 +89,29 @@ class BusyCore:
         self.proc.wait()
 
 
+T13_PAIRS = 5  # alternating runs on one thread and on two for t13, the fastest of each kept
+
+
+def fastest_alternating(run_cli, cli, source, out_dir, vertices, repeat):
+    """The runs on one thread and on two, alternating `repeat` times: the row of each with the
+    fastest optimize stage (a failed run's row if one fails). A run only slows down when other
+    work shares the host, and alternating spreads that over both."""
+    best = {}
+    for _ in range(repeat):
+        for threads in (1, 2):
+            row = run_cli(cli, source, out_dir, "threads%d_t13" % threads, vertices, ["--threads", str(threads)])
+            if "report" not in row:
+                return row, row
+            if threads not in best or stage(row, "optimize") < stage(best[threads], "optimize"):
+                best[threads] = row
+    return best[1], best[2]
+
+
 def threads(run_cli, cli, mesh_dir, out_dir, large):
     """Rows of the threads table: (case, one-thread row, two-thread row) pairs, then the busy-core
     rows (what, wall s)."""
     t13 = os.path.join(mesh_dir, "gmsh_t13_data.stl")
-    pairs = [("t13, 6000 vertices",
-              run_cli(cli, t13, out_dir, "threads1_t13", 6000, ["--threads", "1"]),
-              run_cli(cli, t13, out_dir, "threads2_t13", 6000, ["--threads", "2"]))]
+    pairs = [("t13, 6000 vertices",) + fastest_alternating(run_cli, cli, t13, out_dir, 6000, T13_PAIRS)]
     if large is not None:
         big = large_inputs(mesh_dir, out_dir)[2]
         pairs.append(("1.1M triangles, 100k vertices",
@@ -144,3 +162,71 @@ def fig9_table(row, gmsh):
              fmt(report.get("hausdorff_relative"), ".3f", 100.0), fmt(gmsh.get("wall"), ".2f"),
              fmt(gmsh.get("kappa_min"), ".3f") if "error" not in gmsh else gmsh["error"]]
     return markdown(head, [cells])
+
+
+def _marginal(rows, key_axis):
+    """Per step along one axis of the scale table (rows sorted along it, the other axis fixed),
+    the optimize stage's added milliseconds per evaluation over the sites or triangles added."""
+    out = []
+    for a, b in zip(rows, rows[1:]):
+        ea = stage(a, "optimize") / a["report"]["evaluations"]
+        eb = stage(b, "optimize") / b["report"]["evaluations"]
+        out.append((eb - ea) / (key_axis(b) - key_axis(a)))
+    return out
+
+
+def targets_table(shared, runs, pairs, busy, fig9_row):
+    """Issue 36's targets beside the figures this bench measured: (target, asked, measured, met)
+    rows, a target not met marked as the known gap docs/known-gaps.md explains."""
+    def ok(flag):
+        return "yes" if flag else "no: known gap"
+    rows = []
+    large = next((r for r in runs if "report" in r and r["report"]["input"]["triangles"] > 1000000
+                  and r["report"]["sites"] == LARGE_SITES), None)
+    if large:
+        out = large["report"]["output"]
+        rows.append(["1. the large case, wall", "under 25 s", fmt(large["wall"], ".1f") + " s", ok(large["wall"] < 25.0)])
+        rows.append(["1. the large case, peak memory", "under 1024 MiB", fmt(large.get("rss"), ".0f") + " MiB",
+                     ok((large.get("rss") or 1e9) < 1024.0)])
+        quality = (out["kappa_min"] >= 0.3 and out["kappa_mean"] >= 0.95 and
+                   large["report"]["hausdorff_relative"] <= 0.001)
+        rows.append(["1. the large case, quality", "kappa min 0.3, mean 0.95, Hausdorff 0.1%",
+                     "%.3f, %.3f, %.3f%%" % (out["kappa_min"], out["kappa_mean"],
+                                              100.0 * large["report"]["hausdorff_relative"]), ok(quality)])
+        normals = stage(large, "normals")
+        rows.append(["2. normals at 1.1M triangles", "under 2 s", fmt(normals, ".2f") + " s",
+                     ok(normals is not None and normals < 2.0)])
+    good = [r for r in runs if "report" in r]
+    by_sites = sorted((r for r in good if r["report"]["input"]["triangles"] > 1000000), key=lambda r: r["report"]["sites"])
+    by_tris = sorted((r for r in good if r["report"]["sites"] == LARGE_SITES), key=lambda r: r["report"]["input"]["triangles"])
+    if len(by_sites) > 2 and len(by_tris) > 2:
+        per_site = _marginal(by_sites, lambda r: r["report"]["sites"])
+        per_tri = _marginal(by_tris, lambda r: r["report"]["input"]["triangles"])
+        linear = all(b <= a * 1.1 for a, b in zip(per_site, per_site[1:])) and \
+            all(b <= a * 1.1 for a, b in zip(per_tri, per_tri[1:]))
+        rows.append(["3. an evaluation's cost in proportion to sites plus triangles",
+                     "no step costs more per site or triangle added than the step before",
+                     "per site added " + ", ".join("%.2f" % (1e6 * v) for v in per_site) + " us; per triangle " +
+                     ", ".join("%.3f" % (1e6 * v) for v in per_tri) + " us", ok(linear)])
+    for name, one, two in pairs:
+        t1, t2 = stage(one, "optimize"), stage(two, "optimize")
+        same = ("report" in one and "report" in two and filecmp.cmp(one["output"], two["output"], shallow=False))
+        met = bool(t1 and t2 and t1 / t2 >= 1.7 and same)
+        rows.append(["4. two threads against one: " + name, "1.7 times, outputs identical",
+                     fmt(t1 / t2 if t1 and t2 else None, ".2f") + (", identical" if same else ", DIFFERENT"), ok(met)])
+    walls = dict(busy)
+    two, one = walls.get("LiftRemesh, 2 threads (waiting threads sleep: the CLI's default)"), walls.get("LiftRemesh, 1 thread")
+    if two and one:
+        rows.append(["4. a busy core does not stall the run", "2 threads no slower than 1 beside a busy core",
+                     "%.2f s against %.2f s" % (two, one), ok(two <= 1.05 * one)])
+    if fig9_row is not None and "report" in fig9_row:
+        rows.append(["5. the Fig. 9 job", "under 5 s", fmt(fig9_row["wall"], ".2f") + " s", ok(fig9_row["wall"] < 5.0)])
+    compared = [r for r in shared if "report" in r and r.get("gmsh", {}).get("wall")]
+    if compared:
+        ratios = [r["wall"] / r["gmsh"]["wall"] for r in compared]
+        better = all(r["report"]["output"]["kappa_min"] > r["gmsh"].get("kappa_min", 1.0) for r in compared)
+        rows.append(["6. beside Gmsh, each shared mesh", "at most 0.5 times its wall, better kappa min",
+                     "%.2f to %.2f times; kappa min %s" % (min(ratios), max(ratios), "better on each" if better else "NOT better on each"),
+                     ok(max(ratios) <= 0.5 and better)])
+    return markdown(["target (issue 36)", "asked", "measured", "met"], rows)
+
