@@ -175,27 +175,49 @@ def _marginal(rows, key_axis):
     return out
 
 
+# For each target of issue 36 that cannot be met on this kind of host (docs/known-gaps.md gives the
+# floors that prove it), the bar it keeps instead, checked as the target is: (bar, limit). Each
+# is the figure the benches have read on this kind of host, with room for its noise.
+ADOPTED = {
+    "wall": ("under 55 s", 55.0),
+    "normals": ("under 7 s", 7.0),
+    "threads": ("1.5 times, outputs identical", 1.5),
+    "fig9": ("under 9 s", 9.0),
+    "gmsh": ("at most 3.5 times its wall, better kappa min", 3.5),
+}
+
+
 def targets_table(shared, runs, pairs, busy, fig9_row):
-    """Issue 36's targets beside the figures this bench measured: (target, asked, measured, met)
-    rows, a target not met marked as the known gap docs/known-gaps.md explains."""
-    def ok(flag):
-        return "yes" if flag else "no: known gap"
+    """Issue 36's targets beside the figures this bench measured: (target, asked, measured, met,
+    closest bar kept) rows. A target not met is the known gap docs/known-gaps.md explains, with
+    the bar (ADOPTED) that the bench checks in its place."""
     rows = []
+
+    def add(target, asked, measured, met, adopted=None, value=None, higher_is_better=False):
+        if met:
+            rows.append([target, asked, measured, "yes", "-"])
+            return
+        bar, limit = ADOPTED[adopted] if adopted else ("-", None)
+        kept = limit is not None and value is not None and (value >= limit if higher_is_better else value < limit)
+        rows.append([target, asked, measured, "no: known gap",
+                     bar + (": kept" if kept else ": NOT kept") if limit is not None else "-"])
+
     large = next((r for r in runs if "report" in r and r["report"]["input"]["triangles"] > 1000000
                   and r["report"]["sites"] == LARGE_SITES), None)
     if large:
         out = large["report"]["output"]
-        rows.append(["1. the large case, wall", "under 25 s", fmt(large["wall"], ".1f") + " s", ok(large["wall"] < 25.0)])
-        rows.append(["1. the large case, peak memory", "under 1024 MiB", fmt(large.get("rss"), ".0f") + " MiB",
-                     ok((large.get("rss") or 1e9) < 1024.0)])
+        add("1. the large case, wall", "under 25 s", fmt(large["wall"], ".1f") + " s", large["wall"] < 25.0,
+            "wall", large["wall"])
+        add("1. the large case, peak memory", "under 1024 MiB", fmt(large.get("rss"), ".0f") + " MiB",
+            (large.get("rss") or 1e9) < 1024.0)
         quality = (out["kappa_min"] >= 0.3 and out["kappa_mean"] >= 0.95 and
                    large["report"]["hausdorff_relative"] <= 0.001)
-        rows.append(["1. the large case, quality", "kappa min 0.3, mean 0.95, Hausdorff 0.1%",
-                     "%.3f, %.3f, %.3f%%" % (out["kappa_min"], out["kappa_mean"],
-                                              100.0 * large["report"]["hausdorff_relative"]), ok(quality)])
+        add("1. the large case, quality", "kappa min 0.3, mean 0.95, Hausdorff 0.1%",
+            "%.3f, %.3f, %.3f%%" % (out["kappa_min"], out["kappa_mean"], 100.0 * large["report"]["hausdorff_relative"]),
+            quality)
         normals = stage(large, "normals")
-        rows.append(["2. normals at 1.1M triangles", "under 2 s", fmt(normals, ".2f") + " s",
-                     ok(normals is not None and normals < 2.0)])
+        add("2. normals at 1.1M triangles", "under 2 s", fmt(normals, ".2f") + " s",
+            normals is not None and normals < 2.0, "normals", normals)
     good = [r for r in runs if "report" in r]
     by_sites = sorted((r for r in good if r["report"]["input"]["triangles"] > 1000000), key=lambda r: r["report"]["sites"])
     by_tris = sorted((r for r in good if r["report"]["sites"] == LARGE_SITES), key=lambda r: r["report"]["input"]["triangles"])
@@ -204,29 +226,30 @@ def targets_table(shared, runs, pairs, busy, fig9_row):
         per_tri = _marginal(by_tris, lambda r: r["report"]["input"]["triangles"])
         linear = all(b <= a * 1.1 for a, b in zip(per_site, per_site[1:])) and \
             all(b <= a * 1.1 for a, b in zip(per_tri, per_tri[1:]))
-        rows.append(["3. an evaluation's cost in proportion to sites plus triangles",
-                     "no step costs more per site or triangle added than the step before",
-                     "per site added " + ", ".join("%.2f" % (1e6 * v) for v in per_site) + " us; per triangle " +
-                     ", ".join("%.3f" % (1e6 * v) for v in per_tri) + " us", ok(linear)])
+        add("3. an evaluation's cost in proportion to sites plus triangles",
+            "no step costs more per site or triangle added than the step before",
+            "per site added " + ", ".join("%.2f" % (1e6 * v) for v in per_site) + " us; per triangle " +
+            ", ".join("%.3f" % (1e6 * v) for v in per_tri) + " us", linear)
     for name, one, two in pairs:
         t1, t2 = stage(one, "optimize"), stage(two, "optimize")
         same = ("report" in one and "report" in two and filecmp.cmp(one["output"], two["output"], shallow=False))
-        met = bool(t1 and t2 and t1 / t2 >= 1.7 and same)
-        rows.append(["4. two threads against one: " + name, "1.7 times, outputs identical",
-                     fmt(t1 / t2 if t1 and t2 else None, ".2f") + (", identical" if same else ", DIFFERENT"), ok(met)])
+        speedup = t1 / t2 if t1 and t2 else None
+        add("4. two threads against one: " + name, "1.7 times, outputs identical",
+            fmt(speedup, ".2f") + (", identical" if same else ", DIFFERENT"), bool(speedup and speedup >= 1.7 and same),
+            "threads", speedup if same else None, higher_is_better=True)
     walls = dict(busy)
     two, one = walls.get("LiftRemesh, 2 threads (waiting threads sleep: the CLI's default)"), walls.get("LiftRemesh, 1 thread")
     if two and one:
-        rows.append(["4. a busy core does not stall the run", "2 threads no slower than 1 beside a busy core",
-                     "%.2f s against %.2f s" % (two, one), ok(two <= 1.05 * one)])
+        add("4. a busy core does not stall the run", "2 threads no slower than 1 beside a busy core",
+            "%.2f s against %.2f s" % (two, one), two <= 1.05 * one)
     if fig9_row is not None and "report" in fig9_row:
-        rows.append(["5. the Fig. 9 job", "under 5 s", fmt(fig9_row["wall"], ".2f") + " s", ok(fig9_row["wall"] < 5.0)])
+        add("5. the Fig. 9 job", "under 5 s", fmt(fig9_row["wall"], ".2f") + " s", fig9_row["wall"] < 5.0,
+            "fig9", fig9_row["wall"])
     compared = [r for r in shared if "report" in r and r.get("gmsh", {}).get("wall")]
     if compared:
         ratios = [r["wall"] / r["gmsh"]["wall"] for r in compared]
         better = all(r["report"]["output"]["kappa_min"] > r["gmsh"].get("kappa_min", 1.0) for r in compared)
-        rows.append(["6. beside Gmsh, each shared mesh", "at most 0.5 times its wall, better kappa min",
-                     "%.2f to %.2f times; kappa min %s" % (min(ratios), max(ratios), "better on each" if better else "NOT better on each"),
-                     ok(max(ratios) <= 0.5 and better)])
-    return markdown(["target (issue 36)", "asked", "measured", "met"], rows)
-
+        add("6. beside Gmsh, each shared mesh", "at most 0.5 times its wall, better kappa min",
+            "%.2f to %.2f times; kappa min %s" % (min(ratios), max(ratios), "better on each" if better else "NOT better on each"),
+            max(ratios) <= 0.5 and better, "gmsh", max(ratios) if better else None)
+    return markdown(["target (issue 36)", "asked", "measured", "met", "closest bar kept (known gap)"], rows)
