@@ -77,17 +77,16 @@ public:
     //! Ends the journal, keeping the edits.
     void keep_edits();
 
-    //! The following find an edit's neighbourhood through the kept fans (keep_fans()).
+    // The following find an edit's neighbourhood through the kept fans (keep_fans()).
+
     //! The uses of the edges with an end among `near` (points), as edge_uses_around gives them.
     std::unordered_map<uint64_t, Uses> edge_uses_near(std::vector<int32_t> near) const;
     //! The quad of edge j of triangle t (t as t1), as quad_of gives it.
     std::optional<Quad> quad_at(int t, int j) const;
     //! Whether an edge joins u and v.
     bool joined(int32_t u, int32_t v) const;
-    //! The fans of the corners of the triangles that share a point with one of `tris`, each in
-    //! triangle order, as they are now; no triangles for the other points. Every corner of a
-    //! quad with a triangle among `tris` has its whole fan here. Called with a point, gives its
-    //! fan as a pair of pointers (flip_rules.h: TrianglesOf).
+    //! Some points' fans as they were when listed, each in triangle order. Called with a point,
+    //! gives its fan as a pair of pointers (flip_rules.h: TrianglesOf), empty if not listed.
     class FanSnapshot {
     public:
         std::pair<const int32_t*, const int32_t*> operator()(int32_t v) const;
@@ -97,6 +96,8 @@ public:
         std::vector<int32_t> points_; // ascending, each with a row
         CompressedRows rows_;
     };
+    //! The fans of the corners of the triangles that share a point with one of `tris`, as they
+    //! are now: every corner of a quad with a triangle among `tris` has its whole fan here.
     FanSnapshot fans_near(const std::vector<int>& tris) const;
     //! flip_pass_around over the triangles `tris` lists (flip_pass_around's `around`); `flipped`
     //! comes back listing the triangles changed, in no particular order.
@@ -147,7 +148,7 @@ public:
 
 private:
     CompressedRows fans_of(const std::vector<char>* listed) const;
-    // The triangles with a corner among `near` (ascending, unique), ascending.
+    // The triangles with a corner among `near` (points), ascending.
     std::vector<int> tris_near(const std::vector<int32_t>& near) const;
 
     struct Journal {

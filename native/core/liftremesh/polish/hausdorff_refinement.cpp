@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -355,13 +356,13 @@ private:
     }
 
     bool should_flip(const EditableMesh::Quad& q, double floor) const {
-        if (flip_folds_rim(mesh_, q, fans_now_)) return false;
+        if (flip_folds_rim(mesh_, q, std::cref(fans_))) return false;
         const auto [before, after] = diagonal_distances(mesh_, q, input_);
         // The edge that cuts across a crease: the other diagonal lies on the input.
         const bool fits = before > params_.tolerance && after < 0.5 * before
                               ? crease_flip_fits(mesh_, q, before, after, params_.tolerance, floor)
                               : quality_flip_keeps_surface(mesh_, q, before, after, params_.tolerance);
-        return fits && !flip_crosses_fans(mesh_, q, fans_now_);
+        return fits && !flip_crosses_fans(mesh_, q, std::cref(fans_));
     }
 
     EditableMesh mesh_;
@@ -371,7 +372,6 @@ private:
     std::vector<int> near_list_;  // the same, listed
     std::vector<int> made_;       // the triangles insert_at made or changed since near_ was cleared
     EditableMesh::FanSnapshot fans_; // per point near near_, its triangles at the start of the flip pass
-    const TrianglesOf fans_now_ = [this](int32_t v) { return fans_(v); };
     std::vector<int32_t> proof_;  // per sample: a triangle within the tolerance last round, or -1
 };
 
