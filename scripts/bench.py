@@ -308,9 +308,10 @@ iteration grows with them, no more."""
 THREADS_TEXT = """The optimize stage on one thread and on two (`--threads 1` and `--threads 2`): for t13 the
 fastest of 5 runs of each, alternating (t13 takes a second: a spike of the host moves one run
 by a third); for the large case one run each, its two-thread run the scale table's. And whether
-the two outputs are the same file, byte for byte. Then t13 at 6000 vertices run while another process (a Python busy loop) keeps one core
-busy. The CLI lets OpenMP's waiting threads sleep (`OMP_WAIT_POLICY=PASSIVE`, set unless the
-user chose a policy); the row with `OMP_WAIT_POLICY=ACTIVE` shows what spinning threads cost."""
+the two outputs are the same file, byte for byte. Then t13 at 6000 vertices run while another
+process (a Python busy loop) keeps one core busy. The CLI lets OpenMP's waiting threads sleep
+(`OMP_WAIT_POLICY=PASSIVE`, set unless the user chose a policy); the row with
+`OMP_WAIT_POLICY=ACTIVE` shows what spinning threads cost."""
 
 TARGETS_TEXT = """The figures above beside the targets of issue 36 (speed at scale), as this run measured them.
 A target not met is a known gap: docs/known-gaps.md ("Speed at scale and on a busy host") gives
