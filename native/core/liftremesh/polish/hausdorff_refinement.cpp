@@ -64,10 +64,10 @@ public:
         clear_near();
         made_.clear();
         if (witnesses.empty()) return 0;
-        std::vector<char> flagged(mesh_.points.size(), 0);
+        std::vector<int32_t> corners; // of the witnesses' triangles
         for (const Witness& w : witnesses)
-            for (int32_t v : mesh_.tris[w.triangle]) flagged[v] = 1;
-        const auto uses = mesh_.edge_uses_around(flagged);
+            corners.insert(corners.end(), mesh_.tris[w.triangle].begin(), mesh_.tris[w.triangle].end());
+        const auto uses = mesh_.edge_uses_near(corners);
         long inserted = 0;
         for (const Witness& w : witnesses) {
             if (inserted == allowed) break;
